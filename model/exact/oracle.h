@@ -1,0 +1,39 @@
+// Oracle: the exact answer of the trace spec for each ray (intended origin,
+// open lower end, ties), computed with rational arithmetic where floating point
+// cannot decide. Traversal of the BVH is conservative: no candidate is skipped.
+#pragma once
+#include <unordered_map>
+#include <vector>
+
+#include "exact/exact_geometry.h"
+#include "scene/bvh.h"
+#include "scene/scene.h"
+#include "trace/trace_record.h"
+
+namespace vbsim {
+
+struct OracleAnswer {
+  int32_t prim = -1;     ///< -1: miss
+  double t = 0.0;        ///< exact t rounded to nearest double (valid when prim >= 0)
+  mpq_class t_exact;     ///< exact t (valid when prim >= 0)
+};
+
+/// Parent rays needed for intended origins: id -> (o, d) of every ray in the trace.
+using ParentRays = std::unordered_map<int64_t, std::pair<Vec3f, Vec3f>>;
+
+/// Intended ray of a trace ray (spec "The exact answer", step 1 and 2).
+/// `parents` may be null (then parent_uv, then projection of o is used).
+ExactRay intended_ray(const TraceRay& ray, const Scene& scene, const ParentRays* parents);
+
+class Oracle {
+ public:
+  Oracle(const Scene& scene, const Bvh& bvh);
+  /// Closest exact hit of the intended ray; for ties, the smallest prim id.
+  OracleAnswer answer(const ExactRay& ray) const;
+
+ private:
+  const Scene& scene_;
+  const Bvh& bvh_;
+};
+
+}  // namespace vbsim

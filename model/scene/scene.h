@@ -1,0 +1,48 @@
+// Scene: the triangles of one scene file, numbered as the trace spec says
+// (from 0, meshes in file order, faces in file order, polygons triangulated),
+// with optional per-vertex shading normals and an optional float32 transform.
+#pragma once
+#include <array>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "datapath/triangle.h"
+
+namespace vbsim {
+
+struct SceneError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+struct Bounds3f {
+  Vec3f lo{INFINITY, INFINITY, INFINITY};
+  Vec3f hi{-INFINITY, -INFINITY, -INFINITY};
+  void extend(Vec3f p);
+};
+
+struct Scene {
+  std::string source;                           ///< file it was loaded from
+  std::vector<Triangle> triangles;              ///< index = triangle id
+  std::vector<std::array<Vec3f, 3>> normals;    ///< per-vertex shading normals, or empty
+  Bounds3f bounds;
+
+  int32_t size() const { return static_cast<int32_t>(triangles.size()); }
+  bool has_normals() const { return !normals.empty(); }
+  /// Shading normal at barycentrics (u, v): (1-u-v) n0 + u n1 + v n2, unnormalised.
+  /// Precondition: has_normals().
+  Vec3f shading_normal(int32_t prim, float u, float v) const;
+};
+
+/// Loads a scene with assimp. `transform` (row-major 4x4) is applied to every
+/// vertex in float32 before anything else; normals get its inverse transpose.
+/// Throws SceneError naming the file on any failure (missing, unreadable, no triangles).
+Scene load_scene(const std::string& path,
+                 const std::optional<std::array<float, 16>>& transform = std::nullopt);
+
+/// Builds a scene directly from triangles (tests and generators).
+Scene make_scene(std::vector<Triangle> triangles,
+                 std::vector<std::array<Vec3f, 3>> normals = {});
+
+}  // namespace vbsim

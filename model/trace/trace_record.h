@@ -1,0 +1,48 @@
+// TraceRay and TraceHeader: one ray of a vbsim trace and the trace's header,
+// field for field as ../docs/trace-format.md (the public contract) defines them.
+// Optional fields carry a has_* flag so that a round trip keeps absent fields absent.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <string>
+
+#include "datapath/ray.h"
+#include "datapath/vec3.h"
+
+namespace vbsim {
+
+struct TraceHeader {
+  int version = 1;
+  std::string scene;        ///< path relative to the trace file, as written
+  std::string scene_path;   ///< resolved path (directory of the trace file + scene)
+  std::optional<Vec3f> light;
+  std::string generator;    ///< empty when absent
+  std::string description;  ///< empty when absent
+  std::optional<std::array<float, 16>> transform;  ///< row-major 4x4, float32
+};
+
+struct TraceRay {
+  int64_t id = 0;
+  int64_t parent = -1;
+  RayKind kind = RayKind::Primary;
+  Vec3f o;
+  Vec3f d;
+  float tmin = 0.0f;
+  float tmax = std::numeric_limits<float>::infinity();  ///< null in the text form
+  int32_t parent_prim = -1;
+  bool has_parent_t = false;
+  float parent_t = 0.0f;
+  bool has_parent_uv = false;
+  float parent_u = 0.0f, parent_v = 0.0f;
+  bool has_parent_ns = false;
+  Vec3f parent_ns;
+  int8_t sign = -1;  ///< 0 or 1 when given, -1 when absent (computed from the scene)
+  bool has_expect = false;
+  int32_t expect_prim = -1;  ///< -1: the exact answer is a miss
+  bool has_expect_t = false;
+  double expect_t = 0.0;     ///< exact hit distance rounded to double
+};
+
+}  // namespace vbsim
