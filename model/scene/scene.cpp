@@ -1,0 +1,28 @@
+#include "scene/scene.h"
+
+namespace vbsim {
+
+void Bounds3f::extend(Vec3f p) {
+  lo = {std::fmin(lo.x, p.x), std::fmin(lo.y, p.y), std::fmin(lo.z, p.z)};
+  hi = {std::fmax(hi.x, p.x), std::fmax(hi.y, p.y), std::fmax(hi.z, p.z)};
+}
+
+Vec3f Scene::shading_normal(int32_t prim, float u, float v) const {
+  const auto& n = normals[static_cast<size_t>(prim)];
+  return (1.0f - u - v) * n[0] + u * n[1] + v * n[2];
+}
+
+Scene make_scene(std::vector<Triangle> triangles, std::vector<std::array<Vec3f, 3>> normals) {
+  Scene scene;
+  scene.source = "<memory>";
+  scene.triangles = std::move(triangles);
+  scene.normals = std::move(normals);
+  for (const Triangle& t : scene.triangles) {
+    scene.bounds.extend(t.v0);
+    scene.bounds.extend(t.v1);
+    scene.bounds.extend(t.v2);
+  }
+  return scene;
+}
+
+}  // namespace vbsim
