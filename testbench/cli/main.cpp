@@ -1,7 +1,32 @@
-// vbsim command line: subcommands are registered in this file's main().
-#include <cstdio>
+// vbsim: command-line entry point. With no arguments it runs the main job (the
+// bundled default trace through the validity-bit unit); otherwise a subcommand.
+#include <fmt/format.h>
 
-int main() {
-  std::puts("vbsim: no subcommands registered yet");
-  return 1;
+#include <CLI/CLI.hpp>
+#include <exception>
+
+#include "commands.h"
+
+int main(int argc, char** argv) {
+  using namespace vbsim::cli;
+  CLI::App app{
+      "vbsim: cycle-level simulator of a ray-tracing accelerator with validity-bit "
+      "self-intersection avoidance"};
+  app.require_subcommand(0, 1);
+  add_replay_command(app);
+  add_convert_command(app);
+  add_bench_command(app);
+  add_oracle_command(app);
+  add_gen_command(app);
+  add_watertight_command(app);
+  try {
+    app.parse(argc, argv);
+    if (app.get_subcommands().empty()) return run_default_job();
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "vbsim: error: {}\n", e.what());
+    return 2;
+  }
+  return 0;
 }

@@ -1,0 +1,62 @@
+// CandidateFilter: the per-candidate part of a self-intersection method, applied
+// inside the closest-hit search the way an Embree filter function is: a rejected
+// candidate does not shorten the ray interval, so the search goes on.
+// Order: primid exclusion first (it needs no arithmetic), then the avoidance unit.
+#pragma once
+#include <cstdint>
+
+#include "datapath/avoidance_unit.h"
+#include "datapath/hit.h"
+#include "datapath/ray.h"
+#include "datapath/self_intersection_method.h"
+#include "datapath/triangle.h"
+
+namespace vbsim {
+
+/// What the candidate filter saw; summed per ray kind by the replay.
+struct CandidateCounters {
+  uint64_t candidates = 0;         ///< hits the tester reported inside the interval
+  uint64_t suspects = 0;           ///< avoidance unit: sign bit equal to front/back bit
+  uint64_t rejected = 0;           ///< candidates dropped by any filter
+  uint64_t rejected_primid = 0;    ///< dropped because prim == parent_prim
+  uint64_t rejected_sign_only = 0; ///< dropped by the bit alone (policy sign-only)
+  uint64_t invalid_normal = 0;     ///< rejected suspects whose normal test said invalid
+  uint64_t invalid_ray = 0;        ///< ... whose along-the-ray test said invalid
+  uint64_t invalid_component = 0;  ///< ... whose component-wise test said invalid
+
+  void add(const CandidateCounters& o);
+};
+
+class CandidateFilter {
+ public:
+  explicit CandidateFilter(const SelfIntersectionMethod& method)
+      : primid_(method.primid), avoid_(method.validity_bit), cfg_(method.avoidance) {}
+
+  /// True when the candidate `hit` on triangle `prim` may become the closest hit.
+  bool accept(const Ray& ray, const Triangle& tri, int32_t prim, const Hit& hit,
+              CandidateCounters& c) const {
+    ++c.candidates;
+    if (primid_ && prim == ray.parent_prim) {
+      ++c.rejected;
+      ++c.rejected_primid;
+      return false;
+    }
+    if (!avoid_) return true;
+    const AvoidanceDecision dec = avoidance_decide(cfg_, ray, tri, hit);
+    c.suspects += dec.suspect;
+    if (!dec.reject) return true;
+    ++c.rejected;
+    c.rejected_sign_only += (cfg_.policy == AvoidancePolicy::SignOnly);
+    c.invalid_normal += (dec.invalid & AvoidanceDecision::kTestNormal) != 0;
+    c.invalid_ray += (dec.invalid & AvoidanceDecision::kTestRay) != 0;
+    c.invalid_component += (dec.invalid & AvoidanceDecision::kTestComponent) != 0;
+    return false;
+  }
+
+ private:
+  bool primid_;
+  bool avoid_;
+  AvoidanceConfig cfg_;
+};
+
+}  // namespace vbsim

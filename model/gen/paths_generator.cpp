@@ -1,0 +1,168 @@
+#include "gen/paths_generator.h"
+
+#include <cmath>
+
+#include "datapath/closest_hit.h"
+#include "datapath/hit_point.h"
+#include "datapath/testers.h"
+#include "gen/seeded_random.h"
+#include "replay/ray_emission.h"
+
+namespace vbsim {
+
+namespace {
+
+struct DVec {
+  double x, y, z;
+};
+DVec to_d(Vec3f v) { return {v.x, v.y, v.z}; }
+Vec3f to_f(DVec v) { return {float(v.x), float(v.y), float(v.z)}; }
+double ddot(DVec a, DVec b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+DVec dscale(double s, DVec a) { return {s * a.x, s * a.y, s * a.z}; }
+DVec dadd(DVec a, DVec b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+DVec dunit(DVec a) { return dscale(1.0 / std::sqrt(ddot(a, a)), a); }
+
+/// Mirror direction of d about the unit normal n.
+DVec reflect(DVec d, DVec n) { return dadd(d, dscale(-2.0 * ddot(d, n), n)); }
+
+class PathBuilder {
+ public:
+  PathBuilder(const Scene& scene, const Bvh& bvh, const PathsParams& p, Vec3f light)
+      : scene_(scene), bvh_(bvh), p_(p), light_(light), rng_(p.seed), filter_(tracer_method()) {
+    tracer_opt_.method = tracer_method();
+  }
+
+  void run(Vec3f camera, Vec3f center, float radius, std::vector<TraceRay>& out) {
+    out_ = &out;
+    for (int path = 0; path < p_.paths; ++path) {
+      const DVec right{1, 0, 0}, up{0, 1, 0};
+      const DVec target = dadd(to_d(center), dadd(dscale(rng_.uniform(-0.7, 0.7) * radius, right),
+                                                  dscale(rng_.uniform(-0.7, 0.7) * radius, up)));
+      TraceRay r;
+      r.kind = RayKind::Primary;
+      r.o = camera;
+      r.d = to_f(dadd(target, dscale(-1.0, to_d(camera))));
+      trace_path(r, path % 2 == 0, 0);
+    }
+  }
+
+ private:
+  static SelfIntersectionMethod tracer_method() {
+    SelfIntersectionMethod m;
+    m.offset_errbound = true;
+    m.primid = true;
+    return m;
+  }
+
+  /// Emits `r` into the trace and, when it hits, its children (recursively).
+  void trace_path(TraceRay r, bool ray_equation, int depth) {
+    r.id = next_id_++;
+    out_->push_back(r);
+    if (r.kind == RayKind::Shadow) return;
+    CandidateCounters cc;
+    TraversalCounters tc;
+    const EmittedRay er = emit_ray(r, scene_, tracer_opt_, nullptr);
+    const Hit h = closest_hit<ThreeHalfPlaneTester>(bvh_, er.ray, filter_, cc, tc);
+    if (!h.valid() || depth >= p_.max_depth) return;
+    spawn_children(r, er.ray.o, h, ray_equation, depth);
+  }
+
+  void spawn_children(const TraceRay& parent, Vec3f traced_o, const Hit& h, bool ray_equation,
+                      int depth) {
+    const Triangle& tri = scene_.triangles[h.prim];
+    const Vec3f p = ray_equation ? hit_point_ray(traced_o, parent.d, h.t)
+                                 : hit_point_barycentric(tri, h.u, h.v);
+    const DVec ng = dunit(to_d(geometric_normal(tri)));
+    const DVec d = dunit(to_d(parent.d));
+    DVec ns = ng;
+    if (scene_.has_normals()) ns = dunit(to_d(scene_.shading_normal(h.prim, h.u, h.v)));
+    // Normals facing the incoming ray, for reflection and diffuse children.
+    const double side = ddot(d, ng) < 0 ? 1.0 : -1.0;
+    const DVec ng_in = dscale(side, ng), ns_in = dscale(ddot(ns, ng_in) < 0 ? -1.0 : 1.0, ns);
+
+    TraceRay child;
+    child.parent = parent.id;
+    child.parent_prim = h.prim;
+    child.has_parent_t = true;
+    child.parent_t = h.t;
+    child.has_parent_uv = true;
+    child.parent_u = h.u;
+    child.parent_v = h.v;
+    if (scene_.has_normals()) {
+      child.has_parent_ns = true;
+      child.parent_ns = to_f(ns);
+    }
+    child.o = p;
+
+    TraceRay shadow = child;
+    shadow.kind = RayKind::Shadow;
+    shadow.d = light_ - p;
+    shadow.tmax = 1.0f;
+    emit_child(shadow);
+
+    TraceRay refl = child;
+    refl.kind = RayKind::Reflect;
+    refl.d = to_f(reflect(d, ns_in));
+
+    TraceRay refr = child;
+    refr.kind = RayKind::Refract;
+    const bool entering = ddot(d, ng) < 0;
+    const double eta = entering ? 1.0 / p_.ior : p_.ior;
+    const double cosi = -ddot(d, ng_in);
+    const double k = 1.0 - eta * eta * (1.0 - cosi * cosi);
+    if (k < 0) {
+      refr.kind = RayKind::Reflect;  // total internal reflection
+      refr.d = to_f(reflect(d, ng_in));
+    } else {
+      refr.d = to_f(dadd(dscale(eta, d), dscale(eta * cosi - std::sqrt(k), ng_in)));
+    }
+
+    TraceRay diff = child;
+    diff.kind = RayKind::Diffuse;
+    const DVec s = to_d(rng_.unit_vector());
+    diff.d = to_f(dunit(dadd(ng_in, s)));  // cosine-weighted about the facing normal
+    if (diff.d == Vec3f{0, 0, 0}) diff.d = to_f(ng_in);
+
+    const uint64_t pick = rng_.below(3);
+    TraceRay* kids[3] = {&refl, &refr, &diff};
+    for (int i = 0; i < 3; ++i) {
+      if (static_cast<uint64_t>(i) == pick) continue;
+      emit_child(*kids[i]);
+    }
+    set_sign(*kids[pick]);
+    trace_path(*kids[pick], ray_equation, depth + 1);
+  }
+
+  void set_sign(TraceRay& r) { r.sign = parent_sign_bit(r, scene_); }
+
+  void emit_child(TraceRay r) {
+    set_sign(r);
+    r.id = next_id_++;
+    out_->push_back(r);
+  }
+
+  const Scene& scene_;
+  const Bvh& bvh_;
+  const PathsParams& p_;
+  Vec3f light_;
+  SeededRandom rng_;
+  ReplayOptions tracer_opt_;
+  CandidateFilter filter_;
+  std::vector<TraceRay>* out_ = nullptr;
+  int64_t next_id_ = 0;
+};
+
+}  // namespace
+
+GeneratedPaths generate_paths(const Scene& scene, const Bvh& bvh, const PathsParams& params) {
+  const Vec3f lo = scene.bounds.lo, hi = scene.bounds.hi;
+  const Vec3f center = 0.5f * (lo + hi);
+  const float radius = 0.5f * length(hi - lo);
+  GeneratedPaths g;
+  g.light = center + radius * Vec3f{0.6f, 2.0f, 0.9f};
+  const Vec3f camera = center + radius * Vec3f{0.15f, 0.35f, 2.5f};
+  PathBuilder(scene, bvh, params, g.light).run(camera, center, radius, g.rays);
+  return g;
+}
+
+}  // namespace vbsim

@@ -1,0 +1,50 @@
+#include "replay/functional_replayer.h"
+
+#include "datapath/closest_hit.h"
+#include "datapath/testers.h"
+#include "exact/oracle.h"
+
+namespace vbsim {
+
+FunctionalReplayer::FunctionalReplayer(const Scene& scene, const Bvh& bvh, const ReplayOptions& options)
+    : scene_(scene), bvh_(bvh), opt_(options), filter_(options.method) {
+  check_traversal_depth(bvh);
+}
+
+RayOutcome FunctionalReplayer::replay(const TraceRay& tr) {
+  KindStats& ks = stats_.by_kind[static_cast<int>(tr.kind)];
+  const EmittedRay er = emit_ray(tr, scene_, opt_, track_parents_ ? &parents_ : nullptr);
+  const bool any_hit = opt_.any_hit_for_shadow && tr.kind == RayKind::Shadow && !er.reversed;
+
+  RayOutcome out;
+  const uint64_t rejected_before = ks.candidates.rejected;
+  switch (opt_.tester) {
+    case TesterKind::ThreeHalfPlane:
+      out.hit = closest_hit<ThreeHalfPlaneTester>(bvh_, er.ray, filter_, ks.candidates, ks.traversal, any_hit);
+      break;
+    case TesterKind::MollerTrumbore:
+      out.hit = closest_hit<MollerTrumboreTester>(bvh_, er.ray, filter_, ks.candidates, ks.traversal, any_hit);
+      break;
+  }
+  out.rejected = ks.candidates.rejected - rejected_before;
+  out.reversed = er.reversed;
+  // A reversed shadow ray is blocked by anything but the parent's own triangle.
+  out.answer = out.hit.prim;
+  if (er.reversed && out.hit.prim == tr.parent_prim) out.answer = -1;
+
+  ++ks.rays;
+  ks.hits += out.answer >= 0;
+  ks.hit_point_fallbacks += er.hit_point_fallback;
+  if (tr.has_expect) {
+    out.scored = true;
+    const bool need_exact = out.answer != tr.expect_prim && tr.kind != RayKind::Shadow && out.answer >= 0;
+    ExactRay intended;
+    if (need_exact) intended = intended_ray(tr, scene_, &parents_);
+    out.verdict = judge(tr, out.answer, scene_, intended);
+  }
+  ++ks.verdicts[static_cast<int>(out.verdict)];
+  if (track_parents_) parents_[tr.id] = {tr.o, tr.d};
+  return out;
+}
+
+}  // namespace vbsim

@@ -1,0 +1,57 @@
+// FunctionalReplayer: untimed replay of trace rays, one at a time, in trace
+// order: emission -> closest-hit search with the candidate filter -> verdict ->
+// statistics. The same datapath the cycle-level model times.
+//
+// Memory: it keeps (o, d) of every ray it has seen (24 bytes plus hash-map
+// overhead per ray) so that children can find their parent ray for intended
+// origins and ray-equation hit points; a parent must precede its children in the
+// trace to be found. Nothing else grows with the trace.
+#pragma once
+#include <cstdint>
+
+#include "datapath/hit.h"
+#include "replay/ray_emission.h"
+#include "replay/replay_options.h"
+#include "replay/replay_stats.h"
+#include "scene/bvh.h"
+#include "scene/scene.h"
+#include "trace/trace_record.h"
+
+namespace vbsim {
+
+/// The outcome of one ray.
+struct RayOutcome {
+  Hit hit;                  ///< closest accepted hit (reverse-shadow: of the reversed ray)
+  int32_t answer = -1;      ///< the method's answer: triangle, or -1 (shadow: occluder or -1)
+  uint64_t rejected = 0;    ///< candidates the filter rejected for this ray
+  bool scored = false;      ///< the trace had `expect`
+  Verdict verdict = Verdict::Unscored;
+  bool reversed = false;
+};
+
+class FunctionalReplayer {
+ public:
+  /// `scene` and `bvh` must outlive the replayer. Throws when the BVH is too deep.
+  FunctionalReplayer(const Scene& scene, const Bvh& bvh, const ReplayOptions& options);
+
+  /// Replays one ray and adds it to the statistics. Precondition: the ray's
+  /// triangle indices are in range for the scene (the trace readers check this).
+  RayOutcome replay(const TraceRay& tr);
+
+  /// Keep parent rays for intended origins (default true; a benchmark on
+  /// parentless rays turns it off).
+  void set_track_parents(bool on) { track_parents_ = on; }
+  ReplayStats& stats() { return stats_; }
+  const ReplayOptions& options() const { return opt_; }
+
+ private:
+  const Scene& scene_;
+  const Bvh& bvh_;
+  ReplayOptions opt_;
+  CandidateFilter filter_;
+  ParentRayMap parents_;
+  bool track_parents_ = true;
+  ReplayStats stats_;
+};
+
+}  // namespace vbsim

@@ -1,0 +1,127 @@
+#include "replay/ray_emission.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "datapath/hit_point.h"
+#include "datapath/origin_offsets.h"
+#include "datapath/shading_position.h"
+
+namespace vbsim {
+
+namespace {
+
+/// Far end of the ray's passage through the scene's bounding box (0 when it
+/// never enters): where a reverse-shadow ray with no finite tmax starts.
+float scene_exit_t(const Scene& scene, Vec3f o, Vec3f d) {
+  float tfar = std::numeric_limits<float>::infinity();
+  for (int i = 0; i < 3; ++i) {
+    if (d[i] == 0.0f) continue;
+    const float t0 = (scene.bounds.lo[i] - o[i]) / d[i];
+    const float t1 = (scene.bounds.hi[i] - o[i]) / d[i];
+    tfar = std::min(tfar, std::max(t0, t1));
+  }
+  return std::isfinite(tfar) && tfar > 0.0f ? tfar : 0.0f;
+}
+
+/// Start point of the child before any method acts, per the hit-point mode.
+Vec3f base_origin(const TraceRay& tr, const Scene& scene, HitPointMode mode,
+                  const ParentRayMap* parents, bool& fallback) {
+  if (mode == HitPointMode::Given || tr.parent_prim < 0) return tr.o;
+  if (mode == HitPointMode::Ray) {
+    if (tr.has_parent_t && parents) {
+      const auto it = parents->find(tr.parent);
+      if (it != parents->end()) return hit_point_ray(it->second.first, it->second.second, tr.parent_t);
+    }
+  } else if (tr.has_parent_uv) {
+    return hit_point_barycentric(scene.triangles[tr.parent_prim], tr.parent_u, tr.parent_v);
+  }
+  fallback = true;
+  return tr.o;
+}
+
+Vec3f parent_shading_normal(const TraceRay& tr, const Scene& scene, Vec3f ng) {
+  if (tr.has_parent_ns) return tr.parent_ns;
+  if (scene.has_normals() && tr.has_parent_uv)
+    return scene.shading_normal(tr.parent_prim, tr.parent_u, tr.parent_v);
+  return ng;
+}
+
+}  // namespace
+
+const char* hit_point_mode_name(HitPointMode m) {
+  switch (m) {
+    case HitPointMode::Given: return "given";
+    case HitPointMode::Ray: return "ray";
+    default: return "barycentric";
+  }
+}
+
+bool parse_hit_point_mode(const std::string& s, HitPointMode& out) {
+  if (s == "given") out = HitPointMode::Given;
+  else if (s == "ray") out = HitPointMode::Ray;
+  else if (s == "barycentric") out = HitPointMode::Barycentric;
+  else return false;
+  return true;
+}
+
+uint8_t parent_sign_bit(const TraceRay& tr, const Scene& scene) {
+  if (tr.sign >= 0) return static_cast<uint8_t>(tr.sign);
+  if (tr.parent_prim < 0) return 0;
+  return dot(tr.d, geometric_normal(scene.triangles[tr.parent_prim])) < 0.0f ? 1 : 0;
+}
+
+EmittedRay emit_ray(const TraceRay& tr, const Scene& scene, const ReplayOptions& opt,
+                    const ParentRayMap* parents) {
+  const SelfIntersectionMethod& m = opt.method;
+  EmittedRay out;
+  Ray& r = out.ray;
+  r.d = tr.d;
+  r.tmin = tr.tmin;
+  r.tmax = tr.tmax;
+  r.kind = tr.kind;
+  r.parent_prim = tr.parent_prim;
+  r.sign = parent_sign_bit(tr, scene);
+  Vec3f p = base_origin(tr, scene, opt.hit_point, parents, out.hit_point_fallback);
+
+  if (tr.parent_prim >= 0) {
+    const Triangle& tri = scene.triangles[tr.parent_prim];
+    const Vec3f ng = geometric_normal(tri);
+    const bool shadow = tr.kind == RayKind::Shadow;
+    if (shadow && (m.shading_position || m.shading_position_always) && scene.has_normals() &&
+        tr.has_parent_uv) {
+      p = shading_position(p, tri, scene.normals[tr.parent_prim], tr.parent_u, tr.parent_v,
+                           parent_shading_normal(tr, scene, ng), !m.shading_position_always);
+    }
+    if (m.offset_errbound) {
+      // pbrt bounds the error of its own barycentric point; without parent_uv
+      // the bound is applied to the given point as if it were one.
+      BoundedPoint bp = tr.has_parent_uv ? barycentric_point_with_error(tri, tr.parent_u, tr.parent_v)
+                                         : BoundedPoint{p, {}};
+      if (!tr.has_parent_uv) {
+        out.hit_point_fallback = true;
+        bp.error = (7.0f * 5.9604645e-8f) * abs(p);
+      }
+      p = offset_error_bound(bp, ng, r.d);
+    }
+    if (m.offset_adaptive) p = offset_adaptive(p, ng, r.d, m.adaptive);
+    if (m.offset_normal)
+      p = offset_along_normal(p, parent_shading_normal(tr, scene, ng), r.d, m.offset_normal_eps);
+    if (m.offset_direction) p = offset_along_direction(p, r.d, m.offset_direction_eps);
+  }
+  r.o = p;
+  if (m.tmin) r.tmin = std::max(r.tmin, m.tmin_eps / length(r.d));
+
+  if (m.reverse_shadow && tr.kind == RayKind::Shadow) {
+    const float t_light = std::isfinite(r.tmax) ? r.tmax : scene_exit_t(scene, r.o, r.d);
+    r.o = r.o + t_light * r.d;
+    r.d = -r.d;
+    r.tmax = t_light;
+    r.sign ^= 1u;  // the sign bit belongs to the direction, which flipped
+    out.reversed = true;
+  }
+  return out;
+}
+
+}  // namespace vbsim

@@ -1,0 +1,35 @@
+// Ray emission: turns one trace ray into the ray record the accelerator tests,
+// as the patent's ray-emission API would: the origin (given, or recomputed from
+// the parent's data), the emission-time methods (shading position, offsets,
+// tmin, reverse shadow) and the parent sign bit (computed when the trace omits it).
+#pragma once
+#include <cstdint>
+#include <unordered_map>
+#include <utility>
+
+#include "datapath/ray.h"
+#include "replay/replay_options.h"
+#include "scene/scene.h"
+#include "trace/trace_record.h"
+
+namespace vbsim {
+
+/// id -> (o, d) of the rays seen so far: parents for ray-equation hit points
+/// and for intended origins.
+using ParentRayMap = std::unordered_map<int64_t, std::pair<Vec3f, Vec3f>>;
+
+struct EmittedRay {
+  Ray ray;
+  bool reversed = false;        ///< reverse-shadow: traced from the light back
+  bool hit_point_fallback = false;  ///< the requested hit point needed data the ray lacks
+};
+
+/// Parent sign bit of the trace spec: the given `sign`, else dot(d, Ng(parent_prim)) < 0
+/// (0 for a camera ray). Precondition: parent_prim is in range.
+uint8_t parent_sign_bit(const TraceRay& tr, const Scene& scene);
+
+/// The ray the accelerator receives for `tr` under `opt`. `parents` may be null.
+EmittedRay emit_ray(const TraceRay& tr, const Scene& scene, const ReplayOptions& opt,
+                    const ParentRayMap* parents);
+
+}  // namespace vbsim

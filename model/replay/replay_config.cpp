@@ -1,0 +1,152 @@
+#include "replay/replay_config.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <fstream>
+#include <map>
+
+namespace vbsim {
+
+namespace {
+
+[[noreturn]] void fail(const std::string& file, const std::string& field, const std::string& why) {
+  throw ConfigError(fmt::format("{}: field '{}': {}", file, field, why));
+}
+
+/// Reads the fields of one JSON object, remembering which were known.
+class Fields {
+ public:
+  Fields(const nlohmann::json& j, std::string file, std::string prefix)
+      : j_(j), file_(std::move(file)), prefix_(std::move(prefix)) {
+    if (!j_.is_object()) fail(file_, prefix_.empty() ? "<root>" : prefix_, "must be an object");
+  }
+  ~Fields() noexcept(false) {
+    if (std::uncaught_exceptions()) return;
+    for (const auto& [key, value] : j_.items())
+      if (!seen_.count(key)) fail(file_, path(key), "unknown field");
+  }
+  std::string path(const std::string& key) const { return prefix_.empty() ? key : prefix_ + "." + key; }
+  const nlohmann::json* get(const std::string& key) {
+    seen_.insert({key, true});
+    const auto it = j_.find(key);
+    return it == j_.end() ? nullptr : &*it;
+  }
+  void number(const std::string& key, float& out) {
+    if (const auto* v = get(key)) {
+      if (!v->is_number() || !std::isfinite(v->get<double>())) fail(file_, path(key), "must be a finite number");
+      out = v->get<float>();
+    }
+  }
+  void integer(const std::string& key, int& out) {
+    if (const auto* v = get(key)) {
+      if (!v->is_number_integer()) fail(file_, path(key), "must be an integer");
+      out = v->get<int>();
+    }
+  }
+  void boolean(const std::string& key, bool& out) {
+    if (const auto* v = get(key)) {
+      if (!v->is_boolean()) fail(file_, path(key), "must be true or false");
+      out = v->get<bool>();
+    }
+  }
+  template <class Parse>
+  void name(const std::string& key, Parse parse) {
+    if (const auto* v = get(key)) {
+      if (!v->is_string() || !parse(v->get<std::string>()))
+        fail(file_, path(key), "unknown value " + v->dump());
+    }
+  }
+  const std::string& file() const { return file_; }
+
+ private:
+  const nlohmann::json& j_;
+  std::string file_, prefix_;
+  std::map<std::string, bool> seen_;
+};
+
+}  // namespace
+
+void apply_replay_config(const nlohmann::json& j, const std::string& file, ReplayOptions& opt) {
+  SelfIntersectionMethod& m = opt.method;
+  Fields f(j, file, "");
+  f.name("method", [&](const std::string& s) {
+    SelfIntersectionMethod fresh = m;
+    fresh.tmin = fresh.primid = fresh.offset_normal = fresh.offset_direction = false;
+    fresh.offset_adaptive = fresh.offset_errbound = fresh.validity_bit = false;
+    fresh.shading_position = fresh.shading_position_always = fresh.reverse_shadow = false;
+    std::string err;
+    if (!parse_method(s, fresh, err)) return false;
+    m = fresh;
+    return true;
+  });
+  f.name("tester", [&](const std::string& s) { return parse_tester(s, opt.tester); });
+  f.name("hitpoint", [&](const std::string& s) { return parse_hit_point_mode(s, opt.hit_point); });
+  f.boolean("shadow_any_hit", opt.any_hit_for_shadow);
+  f.number("tmin_eps", m.tmin_eps);
+  f.number("offset_normal_eps", m.offset_normal_eps);
+  f.number("offset_direction_eps", m.offset_direction_eps);
+  f.get("bits_per_ray");  // derived; accepted so a stats file's config can be fed back
+  if (const auto* a = f.get("adaptive")) {
+    Fields fa(*a, file, "adaptive");
+    fa.number("origin", m.adaptive.origin);
+    fa.number("float_scale", m.adaptive.float_scale);
+    fa.number("int_scale", m.adaptive.int_scale);
+  }
+  if (const auto* vb = f.get("validity_bit")) {
+    AvoidanceConfig& c = m.avoidance;
+    Fields fv(*vb, file, "validity_bit");
+    fv.name("policy", [&](const std::string& s) { return parse_avoidance_policy(s, c.policy); });
+    fv.name("eps_mode", [&](const std::string& s) { return parse_epsilon_mode(s, c.eps_mode); });
+    fv.number("eps", c.eps);
+    fv.integer("guard_bits", c.guard_bits);
+    fv.integer("min_exponent", c.min_exponent);
+    fv.number("component_scale", c.component_scale);
+    if (const auto* t = fv.get("tests")) {
+      Fields ft(*t, file, "validity_bit.tests");
+      ft.boolean("normal", c.test_normal);
+      ft.boolean("ray", c.test_ray);
+      ft.boolean("component", c.test_component);
+    }
+    if (const auto* w = fv.get("weights")) {
+      Fields fw(*w, file, "validity_bit.weights");
+      fw.integer("normal", c.weight_normal);
+      fw.integer("ray", c.weight_ray);
+      fw.integer("component", c.weight_component);
+    }
+  }
+  validate_replay_options(opt, file);
+}
+
+void load_replay_config(const std::string& path, ReplayOptions& opt) {
+  std::ifstream in(path);
+  if (!in) throw ConfigError(fmt::format("{}: cannot open config file", path));
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(in);
+  } catch (const nlohmann::json::parse_error& e) {
+    throw ConfigError(fmt::format("{}: not valid JSON: {}", path, e.what()));
+  }
+  apply_replay_config(j, path, opt);
+}
+
+void validate_replay_options(const ReplayOptions& opt, const std::string& origin) {
+  const SelfIntersectionMethod& m = opt.method;
+  const AvoidanceConfig& a = m.avoidance;
+  if (!(m.tmin_eps >= 0)) fail(origin, "tmin_eps", "must be >= 0");
+  if (!(m.offset_normal_eps >= 0)) fail(origin, "offset_normal_eps", "must be >= 0");
+  if (!(m.offset_direction_eps >= 0)) fail(origin, "offset_direction_eps", "must be >= 0");
+  if (!(m.adaptive.origin >= 0)) fail(origin, "adaptive.origin", "must be >= 0");
+  if (!(m.adaptive.float_scale >= 0)) fail(origin, "adaptive.float_scale", "must be >= 0");
+  if (!(m.adaptive.int_scale >= 0 && m.adaptive.int_scale < 1e6f))
+    fail(origin, "adaptive.int_scale", "must be in [0, 1e6)");
+  if (!(a.eps >= 0)) fail(origin, "validity_bit.eps", "must be >= 0");
+  if (a.guard_bits < 0 || a.guard_bits > 23) fail(origin, "validity_bit.guard_bits", "must be in 0..23");
+  if (a.min_exponent < 1 || a.min_exponent > 254)
+    fail(origin, "validity_bit.min_exponent", "must be a biased float32 exponent in 1..254");
+  if (!(a.component_scale > 0)) fail(origin, "validity_bit.component_scale", "must be > 0");
+  if (a.weight_normal < 0 || a.weight_ray < 0 || a.weight_component < 0)
+    fail(origin, "validity_bit.weights", "must be >= 0");
+}
+
+}  // namespace vbsim

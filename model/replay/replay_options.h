@@ -1,0 +1,24 @@
+// ReplayOptions: the effective configuration of one replay (echoed into stats).
+#pragma once
+#include <string>
+
+#include "datapath/self_intersection_method.h"
+#include "datapath/testers.h"
+
+namespace vbsim {
+
+/// Where a child's origin comes from before any method acts (trace spec):
+/// the trace's `o` as given, the parent ray's o + parent_t d, or the
+/// barycentric point at parent_uv on parent_prim.
+enum class HitPointMode { Given, Ray, Barycentric };
+const char* hit_point_mode_name(HitPointMode m);
+bool parse_hit_point_mode(const std::string& s, HitPointMode& out);
+
+struct ReplayOptions {
+  SelfIntersectionMethod method;
+  TesterKind tester = TesterKind::ThreeHalfPlane;
+  HitPointMode hit_point = HitPointMode::Given;
+  bool any_hit_for_shadow = true;  ///< shadow rays stop at the first accepted hit
+};
+
+}  // namespace vbsim

@@ -1,0 +1,49 @@
+#include "replay/replay_run.h"
+
+#include <fmt/format.h>
+
+#include <chrono>
+
+#include "trace/trace_source.h"
+
+namespace vbsim {
+
+SceneAndBvh load_trace_scene(const TraceHeader& header) {
+  SceneAndBvh sb;
+  sb.scene = load_scene(header.scene_path, header.transform);
+  sb.bvh = build_bvh(sb.scene);
+  return sb;
+}
+
+std::string hit_json_line(const TraceRay& tr, const RayOutcome& out) {
+  std::string s = fmt::format("{{\"id\":{},\"prim\":{}", tr.id, out.hit.prim);
+  if (out.hit.prim >= 0)
+    s += fmt::format(",\"t\":{},\"u\":{},\"v\":{},\"front\":{}", out.hit.t, out.hit.u, out.hit.v,
+                     out.hit.front);
+  s += fmt::format(",\"rejected\":{}", out.rejected);
+  if (out.reversed) s += ",\"reversed\":true";
+  if (out.scored) s += fmt::format(",\"verdict\":\"{}\"", verdict_name(out.verdict));
+  s += "}\n";
+  return s;
+}
+
+ReplayStats run_replay(TraceSource& source, const SceneAndBvh& sb, const ReplayOptions& opt,
+                       std::ostream* hits, const std::atomic<bool>* stop) {
+  source.set_triangle_count(sb.scene.size());
+  FunctionalReplayer replayer(sb.scene, sb.bvh, opt);
+  const auto start = std::chrono::steady_clock::now();
+  TraceRay tr;
+  while (source.next(tr)) {
+    const RayOutcome out = replayer.replay(tr);
+    if (hits) *hits << hit_json_line(tr, out);
+    if (stop && stop->load(std::memory_order_relaxed)) {
+      replayer.stats().partial = true;
+      break;
+    }
+  }
+  ReplayStats stats = replayer.stats();
+  stats.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return stats;
+}
+
+}  // namespace vbsim

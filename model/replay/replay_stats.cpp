@@ -1,0 +1,132 @@
+#include "replay/replay_stats.h"
+
+#include <fmt/format.h>
+
+namespace vbsim {
+
+namespace {
+
+nlohmann::json verdicts_json(const KindStats& k) {
+  nlohmann::json j;
+  for (int v = 0; v < kVerdictCount; ++v) j[verdict_name(static_cast<Verdict>(v))] = k.verdicts[v];
+  return j;
+}
+
+double ratio(uint64_t num, uint64_t den) { return den ? static_cast<double>(num) / den : 0.0; }
+
+nlohmann::json avoidance_json(const CandidateCounters& c) {
+  return {{"candidates", c.candidates},
+          {"suspects", c.suspects},
+          {"rejected", c.rejected},
+          {"suspect_rate", ratio(c.suspects, c.candidates)},
+          {"rejection_rate", ratio(c.rejected, c.candidates)},
+          {"rejected_by",
+           {{"primid", c.rejected_primid},
+            {"sign_only", c.rejected_sign_only},
+            {"normal", c.invalid_normal},
+            {"ray", c.invalid_ray},
+            {"component", c.invalid_component}}}};
+}
+
+nlohmann::json traversal_json(const TraversalCounters& t, uint64_t rays) {
+  return {{"node_visits", t.node_visits},
+          {"box_tests", t.box_tests},
+          {"triangle_tests", t.triangle_tests},
+          {"node_visits_per_ray", ratio(t.node_visits, rays)},
+          {"triangle_tests_per_ray", ratio(t.triangle_tests, rays)}};
+}
+
+}  // namespace
+
+void KindStats::add(const KindStats& o) {
+  rays += o.rays;
+  hits += o.hits;
+  for (int v = 0; v < kVerdictCount; ++v) verdicts[v] += o.verdicts[v];
+  hit_point_fallbacks += o.hit_point_fallbacks;
+  candidates.add(o.candidates);
+  traversal.add(o.traversal);
+}
+
+KindStats ReplayStats::total() const {
+  KindStats t;
+  for (const KindStats& k : by_kind) t.add(k);
+  return t;
+}
+
+nlohmann::json ReplayStats::to_json(const nlohmann::json& config) const {
+  const KindStats t = total();
+  nlohmann::json j;
+  j["config"] = config;
+  j["rays"] = t.rays;
+  j["hits"] = t.hits;
+  j["verdicts"] = verdicts_json(t);
+  j["hit_point_fallbacks"] = t.hit_point_fallbacks;
+  nlohmann::json kinds = nlohmann::json::object();
+  for (int k = 0; k < kRayKindCount; ++k) {
+    const KindStats& s = by_kind[k];
+    if (s.rays == 0) continue;
+    kinds[ray_kind_name(static_cast<RayKind>(k))] = {{"rays", s.rays},
+                                                     {"hits", s.hits},
+                                                     {"verdicts", verdicts_json(s)},
+                                                     {"avoidance", avoidance_json(s.candidates)},
+                                                     {"traversal", traversal_json(s.traversal, s.rays)}};
+  }
+  j["by_kind"] = kinds;
+  j["avoidance"] = avoidance_json(t.candidates);
+  j["traversal"] = traversal_json(t.traversal, t.rays);
+  j["sim"] = {{"mode", mode},
+              {"wall_s", wall_s},
+              {"rays_per_s", wall_s > 0 ? t.rays / wall_s : 0.0},
+              {"partial", partial}};
+  return j;
+}
+
+std::string ReplayStats::summary() const {
+  const KindStats t = total();
+  std::string s = fmt::format("rays {:>10}   hits {:>10}\n", t.rays, t.hits);
+  s += "verdicts ";
+  for (int v = 0; v < kVerdictCount; ++v)
+    s += fmt::format(" {} {}", verdict_name(static_cast<Verdict>(v)), t.verdicts[v]);
+  s += "\n";
+  for (int k = 0; k < kRayKindCount; ++k) {
+    const KindStats& ks = by_kind[k];
+    if (ks.rays == 0) continue;
+    s += fmt::format("  {:<8} {:>8} rays  correct {:>8}  self_hit {:>6}  false_hit {:>6}  missed {:>6}  unscored {:>6}\n",
+                     ray_kind_name(static_cast<RayKind>(k)), ks.rays, ks.verdicts[0], ks.verdicts[1],
+                     ks.verdicts[2], ks.verdicts[3], ks.verdicts[4]);
+  }
+  const CandidateCounters& c = t.candidates;
+  s += fmt::format("avoidance: {} candidates, {} suspects ({:.3f}%), {} rejected ({:.3f}% of candidates)\n",
+                   c.candidates, c.suspects, 100.0 * ratio(c.suspects, c.candidates), c.rejected,
+                   100.0 * ratio(c.rejected, c.candidates));
+  s += fmt::format("speed: {:.3f} s wall, {:.0f} rays/s ({}{})\n", wall_s,
+                   wall_s > 0 ? t.rays / wall_s : 0.0, mode, partial ? ", partial" : "");
+  return s;
+}
+
+nlohmann::json replay_config_json(const ReplayOptions& opt) {
+  const SelfIntersectionMethod& m = opt.method;
+  const AvoidanceConfig& a = m.avoidance;
+  return {{"method", m.name()},
+          {"tester", tester_name(opt.tester)},
+          {"hitpoint", hit_point_mode_name(opt.hit_point)},
+          {"bits_per_ray", m.bits_per_ray()},
+          {"shadow_any_hit", opt.any_hit_for_shadow},
+          {"tmin_eps", m.tmin_eps},
+          {"offset_normal_eps", m.offset_normal_eps},
+          {"offset_direction_eps", m.offset_direction_eps},
+          {"adaptive", {{"origin", m.adaptive.origin},
+                        {"float_scale", m.adaptive.float_scale},
+                        {"int_scale", m.adaptive.int_scale}}},
+          {"validity_bit",
+           {{"policy", avoidance_policy_name(a.policy)},
+            {"eps_mode", epsilon_mode_name(a.eps_mode)},
+            {"eps", a.eps},
+            {"guard_bits", a.guard_bits},
+            {"min_exponent", a.min_exponent},
+            {"tests", {{"normal", a.test_normal}, {"ray", a.test_ray}, {"component", a.test_component}}},
+            {"component_scale", a.component_scale},
+            {"weights", {{"normal", a.weight_normal}, {"ray", a.weight_ray}, {"component", a.weight_component}}}}}};
+}
+
+}  // namespace vbsim

@@ -1,0 +1,46 @@
+// ReplayStats: what a replay counted, per ray kind, and its JSON form (the
+// `--stats` file: config, rays, verdicts, by_kind, avoidance, traversal, sim).
+#pragma once
+#include <array>
+#include <cstdint>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "datapath/candidate_filter.h"
+#include "datapath/closest_hit.h"
+#include "datapath/ray.h"
+#include "replay/replay_options.h"
+#include "replay/verdict.h"
+
+namespace vbsim {
+
+/// Counters of one ray kind (or of all rays).
+struct KindStats {
+  uint64_t rays = 0;
+  uint64_t hits = 0;                        ///< rays that returned a hit (shadow: occluded)
+  std::array<uint64_t, kVerdictCount> verdicts{};
+  uint64_t hit_point_fallbacks = 0;         ///< origin kept as given: parent data missing
+  CandidateCounters candidates;
+  TraversalCounters traversal;
+
+  void add(const KindStats& o);
+};
+
+struct ReplayStats {
+  std::array<KindStats, kRayKindCount> by_kind;
+  std::string mode = "functional";
+  double wall_s = 0.0;
+  bool partial = false;
+
+  KindStats total() const;
+  /// The stats JSON, with `config` the effective configuration.
+  nlohmann::json to_json(const nlohmann::json& config) const;
+  /// A short human summary (rays, verdicts, rejection rate, speed).
+  std::string summary() const;
+};
+
+/// The effective configuration of a replay as JSON (method, tester, parameters).
+nlohmann::json replay_config_json(const ReplayOptions& opt);
+
+}  // namespace vbsim

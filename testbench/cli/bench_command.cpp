@@ -1,0 +1,73 @@
+// vbsim bench: vbsim's functional replay against Embree's rtcIntersect1 on the
+// same rays and scene, in one run.
+#include <fmt/format.h>
+
+#include <fstream>
+
+#include "bench/functional_bench.h"
+#include "commands.h"
+#include "method_options.h"
+#include "scene/bvh_stats.h"
+
+namespace vbsim::cli {
+
+namespace {
+
+struct BenchArgs {
+  std::string mode = "functional";
+  std::string scene = std::string(VBSIM_SOURCE_DIR) + "/traces/bunny/bunny.obj";
+  int64_t rays = 200000;
+  uint64_t seed = 1;
+  int repeats = 3;
+  std::string json;
+  MethodOptions method;
+};
+
+void run_bench(const BenchArgs& a) {
+  if (a.mode != "functional")
+    throw std::runtime_error(fmt::format("option '--mode': '{}' is not available; modes: functional", a.mode));
+  if (a.rays <= 0) throw std::runtime_error("option '--rays': must be > 0");
+  if (a.repeats <= 0) throw std::runtime_error("option '--repeats': must be > 0");
+  const ReplayOptions opt = resolve_method_options(a.method);
+  const Scene scene = load_scene(a.scene);
+  BenchParams p;
+  p.rays = a.rays;
+  p.seed = a.seed;
+  p.repeats = a.repeats;
+  const BenchResult r = run_functional_bench(scene, opt, p);
+
+  nlohmann::json j = r.to_json();
+  j["mode"] = a.mode;
+  j["scene"] = a.scene;
+  j["triangles"] = scene.size();
+  j["seed"] = a.seed;
+  j["repeats"] = a.repeats;
+  j["config"] = replay_config_json(opt);
+  if (!a.json.empty()) {
+    std::ofstream out(a.json);
+    if (!out) throw std::runtime_error(fmt::format("{}: cannot write JSON", a.json));
+    out << j.dump(2) << "\n";
+  }
+  fmt::print("vbsim bench ({}, {} rays, {} triangles, method {}, tester {}, best of {})\n", a.mode,
+             r.rays, scene.size(), opt.method.name(), tester_name(opt.tester), a.repeats);
+  fmt::print("  vbsim   {:>12.0f} rays/s   ({} hits)\n", r.vbsim_rays_per_s, r.vbsim_hits);
+  fmt::print("  embree  {:>12.0f} rays/s   ({} hits)\n", r.embree_rays_per_s, r.embree_hits);
+  fmt::print("  ratio   {:>12.3f}          (same triangle on {} of {} rays)\n", r.ratio, r.same_prim, r.rays);
+}
+
+}  // namespace
+
+void add_bench_command(CLI::App& app) {
+  auto args = std::make_shared<BenchArgs>();
+  CLI::App* cmd = app.add_subcommand("bench", "time vbsim against Embree on the same rays (single thread)");
+  cmd->add_option("--mode", args->mode, "what to time: functional")->capture_default_str();
+  cmd->add_option("--scene", args->scene, "scene file")->capture_default_str();
+  cmd->add_option("--rays", args->rays, "number of random rays")->capture_default_str();
+  cmd->add_option("--seed", args->seed, "random seed")->capture_default_str();
+  cmd->add_option("--repeats", args->repeats, "timed repetitions; the best counts")->capture_default_str();
+  cmd->add_option("--json", args->json, "write the results JSON here");
+  add_method_options(*cmd, args->method, "none");
+  cmd->callback([args] { run_bench(*args); });
+}
+
+}  // namespace vbsim::cli

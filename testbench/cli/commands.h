@@ -1,0 +1,22 @@
+// The vbsim subcommands. Each add_*_command registers its options on the app and
+// sets a callback; errors are thrown and reported once by main().
+#pragma once
+#include <CLI/CLI.hpp>
+#include <string>
+
+namespace vbsim::cli {
+
+/// The bundled default trace (used by `vbsim` with no arguments).
+std::string default_trace_path();
+
+void add_replay_command(CLI::App& app);
+void add_convert_command(CLI::App& app);
+void add_bench_command(CLI::App& app);
+void add_oracle_command(CLI::App& app);
+void add_gen_command(CLI::App& app);
+void add_watertight_command(CLI::App& app);
+
+/// The main job: replay of the default trace with validity-bit, printed summary.
+int run_default_job();
+
+}  // namespace vbsim::cli

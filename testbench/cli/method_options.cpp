@@ -1,0 +1,70 @@
+#include "method_options.h"
+
+#include <sstream>
+
+#include "replay/replay_config.h"
+
+namespace vbsim::cli {
+
+void add_method_options(CLI::App& app, MethodOptions& o, const std::string& default_method) {
+  o.default_method = default_method;
+  app.add_option("--method,-m", o.method,
+                 "self-intersection method(s), joined by '+': none, tmin, primid, offset-normal, "
+                 "offset-direction, offset-adaptive, offset-errbound, validity-bit, sign-only, "
+                 "shading-position, shading-position-always, reverse-shadow [" + default_method + "]");
+  app.add_option("--tester", o.tester, "ray/triangle tester: three-half-plane or moller-trumbore [three-half-plane]");
+  app.add_option("--hitpoint", o.hitpoint,
+                 "child origin before the method acts: given (the trace's o), ray (parent o + t d) "
+                 "or barycentric (parent_uv) [given]");
+  app.add_option("--config", o.config, "JSON configuration file (fields as in the stats 'config')");
+  app.add_option("--tmin-eps", o.tmin_eps, "tmin: distance in scene units (tmin = eps/|d|) [1e-4]");
+  app.add_option("--offset-normal-eps", o.offset_normal_eps, "offset-normal: scene units [1e-4]");
+  app.add_option("--offset-direction-eps", o.offset_direction_eps, "offset-direction: scene units [1e-4]");
+  app.add_option("--adaptive-origin", o.adaptive_origin, "offset-adaptive: origin() [1/32]");
+  app.add_option("--adaptive-float-scale", o.adaptive_float_scale, "offset-adaptive: float_scale() [1/65536]");
+  app.add_option("--adaptive-int-scale", o.adaptive_int_scale, "offset-adaptive: int_scale() [256]");
+  app.add_option("--vb-policy", o.vb_policy, "validity-bit: all, vote or sign-only [all]");
+  app.add_option("--vb-eps-mode", o.vb_eps_mode, "validity-bit: fixed or exponent [exponent]");
+  app.add_option("--vb-eps", o.vb_eps, "validity-bit: fixed epsilon, scene units [1e-4]");
+  app.add_option("--vb-guard-bits", o.vb_guard_bits, "validity-bit: exponent guard band, bits [5]");
+  app.add_option("--vb-min-exponent", o.vb_min_exponent, "validity-bit: minimum biased exponent [110]");
+  app.add_option("--vb-tests", o.vb_tests, "validity-bit: epsilon tests, comma list of normal,ray,component [normal,ray]");
+  app.add_option("--vb-component-scale", o.vb_component_scale, "validity-bit: component test multiplier [0.577]");
+}
+
+ReplayOptions resolve_method_options(const MethodOptions& o) {
+  ReplayOptions opt;
+  if (!o.config.empty()) load_replay_config(o.config, opt);
+  nlohmann::json j;
+  if (!o.method.empty()) j["method"] = o.method;
+  else if (o.config.empty()) j["method"] = o.default_method;
+  if (!o.tester.empty()) j["tester"] = o.tester;
+  if (!o.hitpoint.empty()) j["hitpoint"] = o.hitpoint;
+  if (o.tmin_eps) j["tmin_eps"] = *o.tmin_eps;
+  if (o.offset_normal_eps) j["offset_normal_eps"] = *o.offset_normal_eps;
+  if (o.offset_direction_eps) j["offset_direction_eps"] = *o.offset_direction_eps;
+  if (o.adaptive_origin) j["adaptive"]["origin"] = *o.adaptive_origin;
+  if (o.adaptive_float_scale) j["adaptive"]["float_scale"] = *o.adaptive_float_scale;
+  if (o.adaptive_int_scale) j["adaptive"]["int_scale"] = *o.adaptive_int_scale;
+  if (o.vb_policy) j["validity_bit"]["policy"] = *o.vb_policy;
+  if (o.vb_eps_mode) j["validity_bit"]["eps_mode"] = *o.vb_eps_mode;
+  if (o.vb_eps) j["validity_bit"]["eps"] = *o.vb_eps;
+  if (o.vb_guard_bits) j["validity_bit"]["guard_bits"] = *o.vb_guard_bits;
+  if (o.vb_min_exponent) j["validity_bit"]["min_exponent"] = *o.vb_min_exponent;
+  if (o.vb_component_scale) j["validity_bit"]["component_scale"] = *o.vb_component_scale;
+  if (o.vb_tests) {
+    nlohmann::json tests = {{"normal", false}, {"ray", false}, {"component", false}};
+    std::stringstream in(*o.vb_tests);
+    std::string t;
+    while (std::getline(in, t, ',')) {
+      if (!tests.contains(t))
+        throw ConfigError("command line: option '--vb-tests': unknown test '" + t + "'");
+      tests[t] = true;
+    }
+    j["validity_bit"]["tests"] = tests;
+  }
+  apply_replay_config(j, "command line", opt);
+  return opt;
+}
+
+}  // namespace vbsim::cli

@@ -1,0 +1,31 @@
+// Command-line options of the self-intersection method, tester and hit point,
+// shared by `replay` and `bench`. Command-line values override a --config file.
+#pragma once
+#include <CLI/CLI.hpp>
+#include <optional>
+#include <string>
+
+#include "replay/replay_options.h"
+
+namespace vbsim::cli {
+
+struct MethodOptions {
+  std::string default_method = "none";  ///< used when neither --method nor --config names one
+  std::string method, tester, hitpoint;  ///< empty: not given
+  std::string config;
+  // Parameters: set only when given, so they override the config file.
+  std::optional<float> tmin_eps, offset_normal_eps, offset_direction_eps;
+  std::optional<float> adaptive_origin, adaptive_float_scale, adaptive_int_scale;
+  std::optional<std::string> vb_policy, vb_eps_mode, vb_tests;
+  std::optional<float> vb_eps, vb_component_scale;
+  std::optional<int> vb_guard_bits, vb_min_exponent;
+};
+
+/// Registers the options on `app`, storing into `o`.
+void add_method_options(CLI::App& app, MethodOptions& o, const std::string& default_method);
+
+/// The effective ReplayOptions: defaults, then --config, then the options given.
+/// Throws ConfigError naming the option or field on a bad value.
+ReplayOptions resolve_method_options(const MethodOptions& o);
+
+}  // namespace vbsim::cli
