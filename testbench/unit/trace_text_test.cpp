@@ -219,7 +219,7 @@ TEST_CASE("text trace: random float32 bit patterns survive write and read", "[tr
   TraceHeader h;
   h.scene = "s.obj";
   std::string path = dir.file("random.jsonl");
-  std::vector<TraceRay> rays(4000);
+  std::vector<TraceRay> rays(40000);
   {
     TextTraceWriter writer(path, h);
     for (std::size_t i = 0; i < rays.size(); ++i) {
