@@ -89,6 +89,9 @@ TEST_CASE("binary trace: text to binary to text is byte-identical", "[trace]") {
   std::string text = read_file(dir.file("a.jsonl"));
   CHECK(read_file(dir.file("c.jsonl")) == text);
   CHECK(read_file(dir.file("b.vbt")).compare(0, 8, "VBSIMTRB") == 0);
+  // And the other way round: binary to text to binary.
+  CHECK(convert_trace_file(dir.file("c.jsonl"), dir.file("d.vbt")) == 5);
+  CHECK(read_file(dir.file("d.vbt")) == read_file(dir.file("b.vbt")));
 
   // The rays themselves, bit for bit, and the header.
   TextTraceReader original(dir.file("hand.jsonl"));
