@@ -1,0 +1,49 @@
+// BinaryTraceReader: streams a binary trace (.vbt, layout in
+// binary_trace_format.h) record by record through a fixed-size buffer,
+// validating every ray with the same rules as the text reader.
+#pragma once
+#include <cstdint>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "trace/trace_source.h"
+#include "trace/trace_validation.h"
+
+namespace vbsim {
+
+class BinaryTraceReader final : public TraceSource {
+ public:
+  /// Opens `path`, checks magic and layout version, reads and validates the
+  /// header JSON, and rejects a file whose size leaves a partial last record
+  /// (error at that record's index). Throws TraceError.
+  explicit BinaryTraceReader(std::string path);
+
+  const TraceHeader& header() const override { return header_; }
+  /// Next record; false at the end. Errors name "record N" (0-based) and the field.
+  bool next(TraceRay& out) override;
+  void set_triangle_count(int32_t n) override { validator_.set_triangle_count(n); }
+  const std::string& path() const override { return path_; }
+  TraceError error_at_last_ray(const std::string& field,
+                               const std::string& message) const override;
+
+  /// Number of records in the file (from its size), or -1 when not known.
+  int64_t record_count() const { return record_count_; }
+
+ private:
+  /// Refills the buffer; false when no complete record is left.
+  bool fill();
+
+  std::string path_;
+  std::ifstream in_;
+  TraceHeader header_;
+  TraceRayValidator validator_;
+  std::vector<uint8_t> buffer_;
+  std::size_t pos_ = 0;            ///< next unread byte in buffer_
+  std::size_t end_ = 0;            ///< end of the complete records in buffer_
+  std::size_t trailing_bytes_ = 0; ///< bytes of a partial record met at end of file
+  int64_t next_record_ = 0;        ///< index of the record next() reads next
+  int64_t record_count_ = -1;
+};
+
+}  // namespace vbsim

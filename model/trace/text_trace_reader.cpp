@@ -1,0 +1,136 @@
+#include "trace/text_trace_reader.h"
+
+#include <cerrno>
+#include <cstring>
+
+#include <fmt/format.h>
+
+#include "trace/trace_header_json.h"
+#include "trace/trace_json_values.h"
+
+namespace vbsim {
+
+using json = nlohmann::json;
+
+namespace {
+
+bool is_blank_or_comment(const std::string& line) {
+  for (char c : line) {
+    if (c == ' ' || c == '\t' || c == '\r') continue;
+    return c == '#';
+  }
+  return true;
+}
+
+const json* find_field(const json& object, const char* key) {
+  auto it = object.find(key);
+  return it == object.end() ? nullptr : &*it;
+}
+
+const json& required_field(const json& object, const char* key) {
+  const json* v = find_field(object, key);
+  if (!v) throw TraceFieldProblem{key, "missing (required)"};
+  return *v;
+}
+
+/// Reads the fields of one ray object into `out`; type and range of each
+/// field only (the cross-field rules are check_trace_ray's). Throws TraceFieldProblem.
+void parse_trace_ray(const json& object, TraceRay& out) {
+  out = TraceRay{};
+  out.id = json_int64(required_field(object, "id"), "id");
+  if (const json* v = find_field(object, "parent")) out.parent = json_int64(*v, "parent");
+  if (const json* v = find_field(object, "kind")) {
+    std::string name = json_string(*v, "kind");
+    if (!parse_ray_kind(name.c_str(), out.kind))
+      throw TraceFieldProblem{"kind", fmt::format("unknown kind {} (expected primary, reflect, "
+                                                  "refract, diffuse or shadow)",
+                                                  v->dump())};
+  }
+  out.o = json_vec3(required_field(object, "o"), "o");
+  out.d = json_vec3(required_field(object, "d"), "d");
+  if (const json* v = find_field(object, "tmin")) out.tmin = json_float32(*v, "tmin");
+  if (const json* v = find_field(object, "tmax"); v && !v->is_null())
+    out.tmax = json_float32(*v, "tmax");
+  if (const json* v = find_field(object, "parent_prim"))
+    out.parent_prim = json_int32(*v, "parent_prim");
+  if (const json* v = find_field(object, "parent_t")) {
+    out.has_parent_t = true;
+    out.parent_t = json_float32(*v, "parent_t");
+  }
+  if (const json* v = find_field(object, "parent_uv")) {
+    float uv[2];
+    json_float32_array(*v, "parent_uv", uv, 2);
+    out.has_parent_uv = true;
+    out.parent_u = uv[0];
+    out.parent_v = uv[1];
+  }
+  if (const json* v = find_field(object, "parent_ns")) {
+    out.has_parent_ns = true;
+    out.parent_ns = json_vec3(*v, "parent_ns");
+  }
+  if (const json* v = find_field(object, "sign")) {
+    int64_t sign = json_int64(*v, "sign");
+    if (sign != 0 && sign != 1)
+      throw TraceFieldProblem{"sign", fmt::format("must be 0 or 1, got {}", sign)};
+    out.sign = static_cast<int8_t>(sign);
+  }
+  if (const json* v = find_field(object, "expect")) {
+    if (!v->is_object())
+      throw TraceFieldProblem{"expect", fmt::format("expected an object {{\"prim\": k, \"t\": t}}, "
+                                                    "got {}", v->dump())};
+    const json* prim = find_field(*v, "prim");
+    if (!prim) throw TraceFieldProblem{"expect.prim", "missing (required in expect)"};
+    out.has_expect = true;
+    out.expect_prim = json_int32(*prim, "expect.prim");
+    if (const json* t = find_field(*v, "t"); t && !t->is_null()) {
+      out.has_expect_t = true;
+      out.expect_t = json_double(*t, "expect.t");
+    }
+  }
+}
+
+}  // namespace
+
+TextTraceReader::TextTraceReader(std::string path)
+    : path_(std::move(path)), parser_(std::make_unique<JsonObjectLineParser>()) {
+  in_.open(path_, std::ios::in | std::ios::binary);
+  if (!in_) throw TraceError::in_file(path_, fmt::format("cannot open: {}", std::strerror(errno)));
+  if (!read_content_line())
+    throw TraceError::in_file(path_, "empty: no header line");
+  try {
+    header_ = parse_trace_header(parser_->parse(line_), path_);
+  } catch (const TraceFieldProblem& p) {
+    throw TraceError::at_line(path_, line_number_, p.field, p.message);
+  }
+}
+
+TextTraceReader::~TextTraceReader() = default;
+
+bool TextTraceReader::read_content_line() {
+  while (std::getline(in_, line_)) {
+    ++line_number_;
+    if (!is_blank_or_comment(line_)) return true;
+  }
+  if (in_.bad()) throw TraceError::at_line(path_, line_number_ + 1, "", "read error");
+  return false;
+}
+
+bool TextTraceReader::next(TraceRay& out) {
+  if (!read_content_line()) return false;
+  TraceFieldProblem problem;
+  try {
+    parse_trace_ray(parser_->parse(line_), out);
+  } catch (const TraceFieldProblem& p) {
+    throw TraceError::at_line(path_, line_number_, p.field, p.message);
+  }
+  if (!validator_.check(out, problem))
+    throw TraceError::at_line(path_, line_number_, problem.field, problem.message);
+  return true;
+}
+
+TraceError TextTraceReader::error_at_last_ray(const std::string& field,
+                                              const std::string& message) const {
+  return TraceError::at_line(path_, line_number_, field, message);
+}
+
+}  // namespace vbsim

@@ -1,0 +1,49 @@
+// TextTraceReader: streams a text trace (.jsonl), one JSON object per line,
+// validating every ray as ../../docs/trace-binary.md summarises and the trace
+// format spec defines. Holds one line at a time, plus the ids seen so far.
+#pragma once
+#include <cstdint>
+#include <fstream>
+#include <memory>
+#include <string>
+
+#include "trace/trace_source.h"
+#include "trace/trace_validation.h"
+
+namespace vbsim {
+
+class JsonObjectLineParser;
+
+class TextTraceReader final : public TraceSource {
+ public:
+  /// Opens `path` and reads and validates its header line (blank lines and
+  /// '#' comment lines before it are skipped). Throws TraceError.
+  explicit TextTraceReader(std::string path);
+  ~TextTraceReader() override;
+
+  const TraceHeader& header() const override { return header_; }
+  /// Next ray in file order; false at the end. Throws TraceError naming the
+  /// line and field of the first rule a line breaks.
+  bool next(TraceRay& out) override;
+  void set_triangle_count(int32_t n) override { validator_.set_triangle_count(n); }
+  const std::string& path() const override { return path_; }
+  TraceError error_at_last_ray(const std::string& field,
+                               const std::string& message) const override;
+
+  /// 1-based line number of the line last read (the ray last returned).
+  int64_t line_number() const { return line_number_; }
+
+ private:
+  /// Reads up to the next line that is neither blank nor a comment; false at end of file.
+  bool read_content_line();
+
+  std::string path_;
+  std::ifstream in_;
+  std::string line_;
+  int64_t line_number_ = 0;
+  TraceHeader header_;
+  TraceRayValidator validator_;
+  std::unique_ptr<JsonObjectLineParser> parser_;
+};
+
+}  // namespace vbsim

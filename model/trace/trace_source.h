@@ -1,0 +1,48 @@
+// TraceSource and TraceSink: the streaming interfaces every trace reader and
+// writer implements (text .jsonl, binary .vbt, rtcore ray files).
+// Contract: a source yields rays in file order, one at a time, never holding
+// the whole trace; every ray it yields has passed the format's validation.
+#pragma once
+#include <cstdint>
+#include <string>
+
+#include "trace/trace_error.h"
+#include "trace/trace_record.h"
+
+namespace vbsim {
+
+class TraceSource {
+ public:
+  virtual ~TraceSource() = default;
+
+  /// The trace's header, read and validated when the source was opened.
+  virtual const TraceHeader& header() const = 0;
+  /// Reads the next ray into `out`; false at the end of the trace (then `out`
+  /// is unspecified). Throws TraceError naming file, line/record and field.
+  virtual bool next(TraceRay& out) = 0;
+  /// Scene size, so that rays naming a triangle index >= n (parent_prim,
+  /// expect.prim) are rejected from now on; -1 = unknown, skip that check.
+  virtual void set_triangle_count(int32_t n) = 0;
+  /// Path of the file, as given when opening it.
+  virtual const std::string& path() const = 0;
+  /// A TraceError located at the ray last returned by next(), for checks a
+  /// caller makes later (e.g. a parent id that a replay cannot find).
+  virtual TraceError error_at_last_ray(const std::string& field,
+                                       const std::string& message) const = 0;
+};
+
+class TraceSink {
+ public:
+  virtual ~TraceSink() = default;
+
+  /// Appends one ray. Throws TraceError when the ray breaks the format's rules
+  /// (the same rules the readers enforce) or cannot be written.
+  virtual void write(const TraceRay& ray) = 0;
+  /// Flushes and closes the file; throws TraceError on an I/O failure.
+  /// The destructor closes too but swallows errors: call close() to see them.
+  virtual void close() = 0;
+  /// Path of the file being written.
+  virtual const std::string& path() const = 0;
+};
+
+}  // namespace vbsim

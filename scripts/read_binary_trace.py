@@ -1,0 +1,152 @@
+#!/usr/bin/python3
+"""Read a vbsim binary trace (.vbt) with numpy alone.
+
+Layout (docs/trace-binary.md): 8-byte magic b"VBSIMTRB", u32 layout version
+(1), u32 header-JSON length n, n bytes of header JSON padded with spaces to a
+multiple of 8, then 96-byte little-endian records described by RECORD_DTYPE.
+
+As a module:
+    header, records = read_binary_trace("trace.vbt")      # whole file
+    for chunk in iter_binary_trace("trace.vbt"): ...      # streamed, bounded memory
+As a program:
+    /usr/bin/python3 scripts/read_binary_trace.py trace.vbt [--head N]
+"""
+import argparse
+import json
+import os
+import sys
+
+import numpy as np
+
+MAGIC = b"VBSIMTRB"
+LAYOUT_VERSION = 1
+PREAMBLE_BYTES = 16
+
+# One record; must match binary_trace_format.h field for field.
+RECORD_DTYPE = np.dtype([
+    ("id", "<i8"),
+    ("parent", "<i8"),           # -1: camera ray
+    ("o", "<f4", (3,)),
+    ("d", "<f4", (3,)),
+    ("tmin", "<f4"),
+    ("tmax", "<f4"),             # +inf where the text form has null
+    ("parent_prim", "<i4"),      # -1: none
+    ("parent_t", "<f4"),         # valid when flags & HAS_PARENT_T
+    ("parent_uv", "<f4", (2,)),  # valid when flags & HAS_PARENT_UV
+    ("parent_ns", "<f4", (3,)),  # valid when flags & HAS_PARENT_NS
+    ("expect_prim", "<i4"),      # valid when flags & HAS_EXPECT; -1: a miss
+    ("expect_t", "<f8"),         # valid when flags & HAS_EXPECT_T
+    ("kind", "u1"),              # index into KIND_NAMES
+    ("sign", "u1"),              # 0 or 1, valid when flags & HAS_SIGN
+    ("flags", "<u2"),
+    ("reserved", "<u4"),         # 0
+])
+assert RECORD_DTYPE.itemsize == 96
+
+HAS_PARENT_T = 1 << 0
+HAS_PARENT_UV = 1 << 1
+HAS_PARENT_NS = 1 << 2
+HAS_EXPECT = 1 << 3
+HAS_EXPECT_T = 1 << 4
+HAS_SIGN = 1 << 5
+
+KIND_NAMES = ("primary", "reflect", "refract", "diffuse", "shadow")
+
+
+class BinaryTraceError(ValueError):
+    """A file that is not a well-formed binary trace; the message names the file."""
+
+
+def read_header(path):
+    """Returns (header dict, byte offset of the first record)."""
+    with open(path, "rb") as f:
+        preamble = f.read(PREAMBLE_BYTES)
+        if preamble[:8] != MAGIC:
+            raise BinaryTraceError(f"{path}: not a binary vbsim trace (no {MAGIC!r} magic)")
+        if len(preamble) < PREAMBLE_BYTES:
+            raise BinaryTraceError(f"{path}: truncated: the file ends inside its preamble")
+        version, n = np.frombuffer(preamble, dtype="<u4", count=2, offset=8)
+        if version != LAYOUT_VERSION:
+            raise BinaryTraceError(f"{path}: unsupported binary layout version {version}")
+        padded = (int(n) + 7) // 8 * 8
+        text = f.read(padded)
+        if len(text) != padded:
+            raise BinaryTraceError(f"{path}: header: truncated")
+    header = json.loads(text[:n].decode("utf-8"))
+    if header.get("format") != "vbsim-trace" or header.get("version") != 1:
+        raise BinaryTraceError(f"{path}: header: not a version 1 vbsim trace header")
+    return header, PREAMBLE_BYTES + padded
+
+
+def record_count(path, offset):
+    """Number of records after `offset`; raises on a partial last record."""
+    payload = os.path.getsize(path) - offset
+    count, rest = divmod(payload, RECORD_DTYPE.itemsize)
+    if rest:
+        raise BinaryTraceError(f"{path}: record {count}: truncated: the file ends {rest} bytes "
+                               f"into this {RECORD_DTYPE.itemsize}-byte record")
+    return count
+
+
+def read_binary_trace(path):
+    """Returns (header dict, structured array of all records)."""
+    header, offset = read_header(path)
+    count = record_count(path, offset)
+    return header, np.fromfile(path, dtype=RECORD_DTYPE, count=count, offset=offset)
+
+
+def iter_binary_trace(path, chunk_records=1 << 16):
+    """Yields the records in arrays of at most chunk_records, never the whole file."""
+    _, offset = read_header(path)
+    count = record_count(path, offset)
+    with open(path, "rb") as f:
+        f.seek(offset)
+        for _ in range(0, count, chunk_records):
+            yield np.frombuffer(f.read(chunk_records * RECORD_DTYPE.itemsize), dtype=RECORD_DTYPE)
+
+
+def describe(record):
+    """One record as a dict of the fields it carries (absent optional fields left out)."""
+    flags = int(record["flags"])
+    ray = {"id": int(record["id"]), "parent": int(record["parent"]),
+           "kind": KIND_NAMES[record["kind"]] if record["kind"] < len(KIND_NAMES) else int(record["kind"]),
+           "o": record["o"].tolist(), "d": record["d"].tolist(),
+           "tmin": float(record["tmin"]),
+           "tmax": None if np.isposinf(record["tmax"]) else float(record["tmax"]),
+           "parent_prim": int(record["parent_prim"])}
+    if flags & HAS_PARENT_T:
+        ray["parent_t"] = float(record["parent_t"])
+    if flags & HAS_PARENT_UV:
+        ray["parent_uv"] = record["parent_uv"].tolist()
+    if flags & HAS_PARENT_NS:
+        ray["parent_ns"] = record["parent_ns"].tolist()
+    if flags & HAS_SIGN:
+        ray["sign"] = int(record["sign"])
+    if flags & HAS_EXPECT:
+        ray["expect"] = {"prim": int(record["expect_prim"])}
+        if flags & HAS_EXPECT_T:
+            ray["expect"]["t"] = float(record["expect_t"])
+    return ray
+
+
+def main():
+    parser = argparse.ArgumentParser(description="Summarise a vbsim binary trace (.vbt).")
+    parser.add_argument("path")
+    parser.add_argument("--head", type=int, default=0, help="print the first N records")
+    args = parser.parse_args()
+    try:
+        header, records = read_binary_trace(args.path)
+    except BinaryTraceError as e:
+        print(e, file=sys.stderr)
+        return 1
+    print(json.dumps(header))
+    kinds = np.bincount(records["kind"], minlength=len(KIND_NAMES))
+    print(f"{len(records)} rays: " +
+          ", ".join(f"{n} {name}" for name, n in zip(KIND_NAMES, kinds) if n))
+    for record in records[:args.head]:
+        print(json.dumps(describe(record)))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
