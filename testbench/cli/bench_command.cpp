@@ -7,7 +7,7 @@
 #include "bench/functional_bench.h"
 #include "commands.h"
 #include "method_options.h"
-#include "scene/bvh_stats.h"
+#include "replay/replay_stats.h"
 
 namespace vbsim::cli {
 

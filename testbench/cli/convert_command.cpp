@@ -4,6 +4,7 @@
 #include "commands.h"
 #include "trace/rtcore_ray_import.h"
 #include "trace/trace_file.h"
+#include "trace/trace_header_json.h"
 
 namespace vbsim::cli {
 
@@ -23,7 +24,9 @@ void run_convert(const ConvertArgs& a) {
   } else {
     throw std::runtime_error(fmt::format("option '--from': unknown format '{}'; formats: vbsim, rtcore", a.from));
   }
-  auto sink = create_trace_writer(a.out, source->header());
+  TraceHeader header = source->header();
+  header.scene = scene_relative_to(header.scene_path, a.out);  // the output may live elsewhere
+  auto sink = create_trace_writer(a.out, header);
   const int64_t n = copy_trace(*source, *sink);
   sink->close();
   fmt::print("vbsim convert: {} rays {} -> {}\n", n, a.in, a.out);

@@ -8,6 +8,7 @@
 #include "gen/paths_generator.h"
 #include "replay/ray_emission.h"
 #include "trace/trace_file.h"
+#include "trace/trace_header_json.h"
 
 namespace vbsim::cli {
 
@@ -41,7 +42,7 @@ void run_gen(const GenArgs& a) {
   fs::create_directories(a.out_dir);
   const fs::path out = fs::path(a.out_dir) / (a.name.empty() ? a.scenario + ".jsonl" : a.name);
   TraceHeader h;
-  h.scene = fs::relative(fs::absolute(a.scene), fs::absolute(a.out_dir)).generic_string();
+  h.scene = scene_relative_to(a.scene, out.string());
   h.light = g.light;
   h.generator = fmt::format("vbsim gen paths --rays {} --depth {} --seed {}", a.paths, a.depth, a.seed);
   h.description = fmt::format(

@@ -8,6 +8,7 @@
 #include "replay/ray_emission.h"
 #include "replay/replay_run.h"
 #include "trace/trace_file.h"
+#include "trace/trace_header_json.h"
 
 namespace vbsim::cli {
 
@@ -22,6 +23,7 @@ void run_oracle(const OracleArgs& a) {
   const SceneAndBvh sb = load_trace_scene(source->header());
   source->set_triangle_count(sb.scene.size());
   TraceHeader header = source->header();
+  header.scene = scene_relative_to(header.scene_path, a.out);
   auto sink = create_trace_writer(a.out, header);
   const Oracle oracle(sb.scene, sb.bvh);
   ParentRayMap parents;  // parents must precede children, as in a replay
