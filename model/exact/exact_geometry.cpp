@@ -46,6 +46,9 @@ void dot_into(mpq_class& out, const mpq_class* a, const ExactVec3& b, mpq_class&
 // Fills s.ng with Ng = (v1-v0) x (v2-v0) = v0 x v1 + v1 x v2 + v2 x v0, and
 // (when `d` is given) s.e[k] with d . (v_k x v_{k+1}).
 void triangle_terms(const Triangle& tri, const ExactVec3* d, ExactScratch& s) {
+  require_finite(tri.v0, "vertex");
+  require_finite(tri.v1, "vertex");
+  require_finite(tri.v2, "vertex");
   for (int a = 0; a < 3; ++a) s.ng[a] = 0;
   for (int k = 0; k < 3; ++k) {
     const int k1 = (k + 1) % 3;

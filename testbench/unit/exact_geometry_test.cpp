@@ -41,6 +41,11 @@ TEST_CASE("to_exact converts floats without rounding", "[exact]") {
   tiny /= mpq_class(mpz_class(1) << 149);  // smallest subnormal float
   CHECK(v.z == tiny);
   CHECK_THROWS(to_exact({NAN, 0, 0}));
+  const Triangle bad{{INFINITY, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  ExactRay r;
+  r.o = to_exact({0, 0, 1});
+  r.d = to_exact({0, 0, -1});
+  CHECK_THROWS_AS(exact_intersect(r, bad), std::invalid_argument);
 }
 
 TEST_CASE("exact_intersect: hand-computed hits and misses", "[exact]") {
