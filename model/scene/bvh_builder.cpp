@@ -1,0 +1,226 @@
+// build_bvh: Embree's rtcBuildBVH (binned SAH, high quality, branching factor 2)
+// builds a temporary tree in Embree's thread-local allocator; this file then
+// flattens it depth-first into the layout documented in bvh.h.
+//
+// Choices beyond bvh.h (contract for traversal code):
+//   - Node bounds are the exact float32 min/max of the vertices of the triangles
+//     below the node, recomputed here (never taken from, or shrunk to, anything else).
+//   - Split axis of an interior node: the axis along which the centres of the two
+//     children's bounds differ most (ties: lowest axis). The children are ordered
+//     so that the first child's centre is not greater than the second's on that
+//     axis; a ray with d[axis] >= 0 meets the first child's side first.
+//   - An empty scene gives one node with inverted bounds (lo = +inf, hi = -inf),
+//     offset 0 and count_axis 0, and no triangles. Its count of 0 reads as
+//     "interior" in the encoding, so traversals must treat `tris.empty()` as an
+//     empty scene before reading nodes.
+//   - No spatial splits: each triangle is in exactly one leaf.
+//   - The build runs on one Embree thread (see EmbreeDevice), so it is reproducible.
+#include <atomic>
+#include <cmath>
+#include <algorithm>
+#include <new>
+#include <stdexcept>
+
+#include <embree3/rtcore.h>
+#include <fmt/format.h>
+
+#include "scene/bvh.h"
+#include "scene/embree_device.h"
+
+namespace vbsim {
+
+namespace {
+
+constexpr unsigned kMaxDepth = 32;  // Embree's default depth limit for rtcBuildBVH
+
+// Temporary node, allocated in Embree's thread-local allocator (freed with the RTCBVH).
+struct BuildNode {
+  BuildNode* children[2];
+  uint32_t count;         // 0: interior node
+  const uint32_t* prims;  // leaf: scene triangle ids, `count` of them
+  Bounds3f bounds;        // exact, filled by compute_bounds()
+};
+
+// Shared with the callbacks; they run on Embree's threads and cannot throw.
+struct BuildContext {
+  std::atomic<bool> unexpected_shape{false};  // a node with other than 2 children
+  std::atomic<bool> out_of_memory{false};
+};
+
+void* create_node(RTCThreadLocalAllocator alloc, unsigned child_count, void* user) {
+  auto* context = static_cast<BuildContext*>(user);
+  void* memory = rtcThreadLocalAlloc(alloc, sizeof(BuildNode), alignof(BuildNode));
+  if (memory == nullptr) {
+    context->out_of_memory = true;
+    return nullptr;
+  }
+  if (child_count != 2) context->unexpected_shape = true;
+  return new (memory) BuildNode{{nullptr, nullptr}, 0, nullptr, {}};
+}
+
+void set_node_children(void* node, void** children, unsigned child_count, void* user) {
+  auto* context = static_cast<BuildContext*>(user);
+  if (node == nullptr) return;
+  if (child_count != 2) {
+    context->unexpected_shape = true;
+    return;
+  }
+  auto* n = static_cast<BuildNode*>(node);
+  n->children[0] = static_cast<BuildNode*>(children[0]);
+  n->children[1] = static_cast<BuildNode*>(children[1]);
+}
+
+// Embree's child bounds are not used: bounds are recomputed from the triangles.
+void set_node_bounds(void*, const RTCBounds**, unsigned, void*) {}
+
+void* create_leaf(RTCThreadLocalAllocator alloc, const RTCBuildPrimitive* prims, size_t count, void* user) {
+  auto* context = static_cast<BuildContext*>(user);
+  void* memory = rtcThreadLocalAlloc(alloc, sizeof(BuildNode), alignof(BuildNode));
+  auto* ids = static_cast<uint32_t*>(rtcThreadLocalAlloc(alloc, count * sizeof(uint32_t), alignof(uint32_t)));
+  if (memory == nullptr || ids == nullptr) {
+    context->out_of_memory = true;
+    return nullptr;
+  }
+  for (size_t i = 0; i < count; ++i) ids[i] = prims[i].primID;
+  return new (memory) BuildNode{{nullptr, nullptr}, static_cast<uint32_t>(count), ids, {}};
+}
+
+Bounds3f triangle_bounds(const Triangle& t) {
+  Bounds3f b;
+  b.extend(t.v0);
+  b.extend(t.v1);
+  b.extend(t.v2);
+  return b;
+}
+
+Bounds3f merge(const Bounds3f& a, const Bounds3f& b) {
+  Bounds3f m = a;
+  m.extend(b.lo);
+  m.extend(b.hi);
+  return m;
+}
+
+// Fills BuildNode::bounds bottom-up; throws if the tree is malformed.
+void compute_bounds(BuildNode* node, const Scene& scene) {
+  if (node == nullptr) throw SceneError("Embree rtcBuildBVH returned an incomplete tree");
+  if (node->count != 0) {
+    for (uint32_t i = 0; i < node->count; ++i) {
+      if (node->prims[i] >= static_cast<uint32_t>(scene.size()))
+        throw SceneError(fmt::format("Embree rtcBuildBVH returned unknown primitive {}", node->prims[i]));
+      node->bounds = merge(node->bounds, triangle_bounds(scene.triangles[node->prims[i]]));
+    }
+    return;
+  }
+  compute_bounds(node->children[0], scene);
+  compute_bounds(node->children[1], scene);
+  node->bounds = merge(node->children[0]->bounds, node->children[1]->bounds);
+}
+
+double centre(const Bounds3f& b, int axis) { return 0.5 * (double(b.lo[axis]) + double(b.hi[axis])); }
+
+// Axis along which the two boxes' centres differ most (ties: lowest axis).
+int split_axis(const Bounds3f& a, const Bounds3f& b) {
+  int best = 0;
+  double best_gap = -1.0;
+  for (int axis = 0; axis < 3; ++axis) {
+    const double gap = std::fabs(centre(a, axis) - centre(b, axis));
+    if (gap > best_gap) best = axis, best_gap = gap;
+  }
+  return best;
+}
+
+BvhNode make_node(const Bounds3f& b, uint32_t offset, uint32_t count_axis) {
+  return BvhNode{{b.lo.x, b.lo.y, b.lo.z}, {b.hi.x, b.hi.y, b.hi.z}, offset, count_axis};
+}
+
+// Appends `node`'s subtree in depth-first order; `depth` counts nodes from the root (1).
+void flatten(const BuildNode* node, int depth, const Scene& scene, Bvh& bvh) {
+  bvh.depth = std::max(bvh.depth, depth);
+  const size_t index = bvh.nodes.size();
+  bvh.nodes.emplace_back();
+  if (node->count != 0) {
+    const auto first = static_cast<uint32_t>(bvh.tris.size());
+    for (uint32_t i = 0; i < node->count; ++i)
+      bvh.tris.push_back(BvhTriangle{scene.triangles[node->prims[i]], node->prims[i]});
+    bvh.nodes[index] = make_node(node->bounds, first, node->count);
+    return;
+  }
+  const BuildNode* first = node->children[0];
+  const BuildNode* second = node->children[1];
+  const int axis = split_axis(first->bounds, second->bounds);
+  if (centre(second->bounds, axis) < centre(first->bounds, axis)) std::swap(first, second);
+  flatten(first, depth + 1, scene, bvh);
+  const auto second_index = static_cast<uint32_t>(bvh.nodes.size());
+  flatten(second, depth + 1, scene, bvh);
+  bvh.nodes[index] = make_node(node->bounds, second_index, static_cast<uint32_t>(axis) << 16);
+}
+
+// Owns an RTCBVH (and with it every BuildNode).
+struct BvhHandle {
+  RTCBVH bvh;
+  ~BvhHandle() {
+    if (bvh) rtcReleaseBVH(bvh);
+  }
+};
+
+}  // namespace
+
+Bvh build_bvh(const Scene& scene, const BvhBuildOptions& options) {
+  if (options.max_leaf_size < 1 || options.max_leaf_size > 0xffff)
+    throw std::invalid_argument(
+        fmt::format("BvhBuildOptions.max_leaf_size must be in 1..65535, got {}", options.max_leaf_size));
+
+  Bvh bvh;
+  if (scene.triangles.empty()) {
+    bvh.nodes.push_back(make_node(Bounds3f{}, 0, 0));
+    bvh.depth = 1;
+    return bvh;
+  }
+
+  std::vector<RTCBuildPrimitive> prims(scene.triangles.size());
+  for (size_t i = 0; i < prims.size(); ++i) {
+    const Triangle& t = scene.triangles[i];
+    if (!is_finite(t.v0) || !is_finite(t.v1) || !is_finite(t.v2))
+      throw SceneError(fmt::format("scene '{}': triangle {} has a non-finite vertex", scene.source, i));
+    const Bounds3f b = triangle_bounds(t);
+    prims[i] = RTCBuildPrimitive{b.lo.x, b.lo.y, b.lo.z, 0u, b.hi.x, b.hi.y, b.hi.z, static_cast<unsigned>(i)};
+  }
+
+  EmbreeDevice device;
+  BvhHandle handle{rtcNewBVH(device.get())};
+  device.check("rtcNewBVH");
+
+  BuildContext context;
+  RTCBuildArguments args = rtcDefaultBuildArguments();
+  args.buildQuality = RTC_BUILD_QUALITY_HIGH;
+  args.maxBranchingFactor = 2;
+  args.maxDepth = kMaxDepth;
+  args.minLeafSize = 1;
+  args.maxLeafSize = static_cast<unsigned>(options.max_leaf_size);
+  args.bvh = handle.bvh;
+  args.primitives = prims.data();
+  args.primitiveCount = prims.size();
+  args.primitiveArrayCapacity = prims.size();  // no room for spatial splits: none happen
+  args.createNode = create_node;
+  args.setNodeChildren = set_node_children;
+  args.setNodeBounds = set_node_bounds;
+  args.createLeaf = create_leaf;
+  args.splitPrimitive = nullptr;
+  args.userPtr = &context;
+
+  auto* root = static_cast<BuildNode*>(rtcBuildBVH(&args));
+  device.check("rtcBuildBVH");
+  if (context.out_of_memory) throw SceneError("Embree rtcBuildBVH: out of memory for BVH nodes");
+  if (context.unexpected_shape) throw SceneError("Embree rtcBuildBVH built a node without exactly 2 children");
+
+  compute_bounds(root, scene);
+  bvh.nodes.reserve(2 * prims.size());
+  bvh.tris.reserve(prims.size());
+  flatten(root, 1, scene, bvh);
+  if (bvh.tris.size() != scene.triangles.size())
+    throw SceneError(fmt::format("Embree rtcBuildBVH placed {} of {} triangles in leaves", bvh.tris.size(),
+                                 scene.triangles.size()));
+  return bvh;
+}
+
+}  // namespace vbsim

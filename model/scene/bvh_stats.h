@@ -1,0 +1,38 @@
+// BvhStats: shape and memory figures of a built Bvh, for the docs and the
+// hardware model's memory sizing.
+#pragma once
+#include <cstdint>
+#include <string>
+
+#include "scene/bvh.h"
+
+namespace vbsim {
+
+/// Cost constants of the SAH figure; equal to the traversal and intersection
+/// costs build_bvh passes to Embree (Embree's defaults).
+constexpr double kSahTraversalCost = 1.0;
+constexpr double kSahIntersectionCost = 1.0;
+
+struct BvhStats {
+  int64_t nodes = 0;            ///< all nodes, interior and leaf
+  int64_t leaves = 0;           ///< leaf nodes (an empty scene counts its single node as a leaf)
+  int64_t triangles = 0;        ///< entries of Bvh::tris
+  double average_leaf_size = 0; ///< triangles per leaf
+  int64_t max_leaf_size = 0;    ///< triangles in the largest leaf
+  int depth = 0;                ///< longest root-to-leaf path in nodes, recounted from the nodes
+  int64_t node_bytes = 0;       ///< nodes * sizeof(BvhNode)
+  int64_t triangle_bytes = 0;   ///< triangles * sizeof(BvhTriangle)
+  /// Expected cost of a ray that enters the root, in units of one node visit:
+  /// sum over interior nodes of kSahTraversalCost * A(n) / A(root) plus sum over
+  /// leaves of kSahIntersectionCost * count * A(n) / A(root), A = surface area
+  /// (double). A root of zero area weighs every node 1.
+  double sah_cost = 0;
+};
+
+/// Walks `bvh` from the root (precondition: a tree as build_bvh makes it).
+BvhStats compute_bvh_stats(const Bvh& bvh);
+
+/// One figure per line, "name: value unit", for logs and docs.
+std::string format_bvh_stats(const BvhStats& stats);
+
+}  // namespace vbsim

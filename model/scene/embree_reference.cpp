@@ -1,0 +1,88 @@
+#include "scene/embree_reference.h"
+
+namespace vbsim {
+
+namespace {
+
+// Releases an Embree geometry once it is attached (the scene keeps its own reference).
+struct GeometryHandle {
+  RTCGeometry geometry;
+  ~GeometryHandle() {
+    if (geometry) rtcReleaseGeometry(geometry);
+  }
+};
+
+// Adds `scene`'s triangles to `target` as geometry 0 (primID = triangle id).
+void attach_triangles(const Scene& scene, EmbreeDevice& device, RTCScene target) {
+  GeometryHandle geometry{rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_TRIANGLE)};
+  device.check("rtcNewGeometry");
+  rtcSetGeometryBuildQuality(geometry.geometry, RTC_BUILD_QUALITY_HIGH);
+  const size_t count = scene.triangles.size();
+  // Unshared vertices: triangle k uses vertices 3k, 3k+1, 3k+2, exactly as stored.
+  auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
+      geometry.geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), 3 * count));
+  auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+      geometry.geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), count));
+  device.check("rtcSetNewGeometryBuffer");
+  for (size_t k = 0; k < count; ++k) {
+    const Triangle& tri = scene.triangles[k];
+    const Vec3f corners[3] = {tri.v0, tri.v1, tri.v2};
+    for (int c = 0; c < 3; ++c) {
+      for (int axis = 0; axis < 3; ++axis) vertices[9 * k + 3 * c + axis] = corners[c][axis];
+      indices[3 * k + c] = static_cast<unsigned>(3 * k + c);
+    }
+  }
+  rtcCommitGeometry(geometry.geometry);
+  rtcAttachGeometryByID(target, geometry.geometry, 0);
+}
+
+}  // namespace
+
+EmbreeReference::EmbreeReference(const Scene& scene) : device_(std::make_unique<EmbreeDevice>()) {
+  scene_ = rtcNewScene(device_->get());
+  device_->check("rtcNewScene");
+  try {
+    rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
+    rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
+
+    if (!scene.triangles.empty()) attach_triangles(scene, *device_, scene_);
+    rtcCommitScene(scene_);
+    device_->check("scene build");
+  } catch (...) {
+    rtcReleaseScene(scene_);
+    throw;
+  }
+}
+
+EmbreeReference::~EmbreeReference() { rtcReleaseScene(scene_); }
+
+bool EmbreeReference::intersect(Vec3f o, Vec3f d, float tnear, float tfar, int32_t& prim, float& t, float& u,
+                                float& v) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRayHit query;
+  query.ray.org_x = o.x;
+  query.ray.org_y = o.y;
+  query.ray.org_z = o.z;
+  query.ray.tnear = tnear;
+  query.ray.dir_x = d.x;
+  query.ray.dir_y = d.y;
+  query.ray.dir_z = d.z;
+  query.ray.time = 0.0f;
+  query.ray.tfar = tfar;
+  query.ray.mask = 0xffffffffu;
+  query.ray.id = 0;
+  query.ray.flags = 0;
+  query.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  query.hit.primID = RTC_INVALID_GEOMETRY_ID;
+  query.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(scene_, &context, &query);
+  if (query.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+  prim = static_cast<int32_t>(query.hit.primID);
+  t = query.ray.tfar;
+  u = query.hit.u;
+  v = query.hit.v;
+  return true;
+}
+
+}  // namespace vbsim

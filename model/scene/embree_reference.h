@@ -1,0 +1,42 @@
+// EmbreeReference: Embree's own closest-hit query over a Scene, the reference
+// the project's BVH and testers are checked against and the baseline of the
+// speed benchmark.
+//
+// Contract: one RTC_GEOMETRY_TYPE_TRIANGLE geometry whose primID is the scene's
+// triangle id, built with RTC_SCENE_FLAG_ROBUST and RTC_BUILD_QUALITY_HIGH.
+// Embree skips triangles it deems invalid (a vertex coordinate with magnitude
+// above about 1.8e18, or non-finite); those are never reported.
+#pragma once
+#include <embree3/rtcore.h>
+
+#include <cstdint>
+#include <memory>
+
+#include "datapath/vec3.h"
+#include "scene/embree_device.h"
+#include "scene/scene.h"
+
+namespace vbsim {
+
+class EmbreeReference {
+ public:
+  /// Builds Embree's acceleration structure over `scene` (copied; the scene may
+  /// be destroyed afterwards). Throws SceneError if Embree fails.
+  explicit EmbreeReference(const Scene& scene);
+  ~EmbreeReference();
+  EmbreeReference(const EmbreeReference&) = delete;
+  EmbreeReference& operator=(const EmbreeReference&) = delete;
+
+  /// Closest hit of the ray o + t d with t in [tnear, tfar] (rtcIntersect1, one
+  /// ray on the calling thread). On a hit returns true and sets prim (triangle id),
+  /// t (in units of d) and barycentrics u, v with p = (1-u-v) v0 + u v1 + v v2;
+  /// on a miss returns false and leaves the outputs untouched. Thread-safe.
+  bool intersect(Vec3f o, Vec3f d, float tnear, float tfar, int32_t& prim, float& t, float& u,
+                 float& v) const;
+
+ private:
+  std::unique_ptr<EmbreeDevice> device_;  // outlives scene_ (released after it)
+  RTCScene scene_ = nullptr;
+};
+
+}  // namespace vbsim

@@ -1,0 +1,392 @@
+// Tests of build_bvh, EmbreeReference and bvh_stats: structural invariants of
+// the layout in bvh.h, and closest hits through the BVH cross-checked against
+// a brute-force double-precision search and against Embree's own intersector.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <random>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "scene/bvh.h"
+#include "scene/bvh_stats.h"
+#include "scene/embree_reference.h"
+#include "scene/scene.h"
+
+using namespace vbsim;
+
+namespace {
+
+const std::string kBunnyPath = std::string(VBSIM_SOURCE_DIR) + "/traces/bunny/bunny.obj";
+
+// Random triangles of assorted sizes in the unit cube.
+Scene random_soup(uint32_t seed, int count) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f), offset(-1.0f, 1.0f);
+  std::vector<Triangle> tris;
+  for (int i = 0; i < count; ++i) {
+    const float size = (i % 10 == 0) ? 0.5f : 0.05f;
+    const Vec3f c{unit(rng), unit(rng), unit(rng)};
+    auto corner = [&] { return c + size * Vec3f{offset(rng), offset(rng), offset(rng)}; };
+    const Vec3f a = corner(), b = corner(), d = corner();
+    tris.push_back({a, b, d});
+  }
+  return make_scene(std::move(tris));
+}
+
+bool contains(const BvhNode& n, Vec3f p) {
+  for (int a = 0; a < 3; ++a)
+    if (!(n.lo[a] <= p[a] && p[a] <= n.hi[a])) return false;
+  return true;
+}
+
+bool contains(const BvhNode& outer, const BvhNode& inner) {
+  for (int a = 0; a < 3; ++a)
+    if (!(outer.lo[a] <= inner.lo[a] && inner.hi[a] <= outer.hi[a])) return false;
+  return true;
+}
+
+// Checks every structural promise of bvh.h and bvh_builder.cpp; returns the
+// recounted depth of the subtree at `index`. `next_tri` follows leaf order.
+int check_subtree(const Bvh& bvh, uint32_t index, uint32_t& next_tri, std::vector<int>& seen, int max_leaf) {
+  REQUIRE(index < bvh.nodes.size());
+  const BvhNode& n = bvh.nodes[index];
+  if (n.is_leaf()) {
+    CHECK(n.count() <= static_cast<uint32_t>(max_leaf));
+    CHECK(n.axis() == 0);
+    CHECK(n.offset == next_tri);  // triangles are stored in leaf order
+    REQUIRE(n.offset + n.count() <= bvh.tris.size());
+    for (uint32_t i = n.offset; i < n.offset + n.count(); ++i) {
+      const BvhTriangle& t = bvh.tris[i];
+      REQUIRE(t.prim < seen.size());
+      ++seen[t.prim];
+      CHECK((contains(n, t.tri.v0) && contains(n, t.tri.v1) && contains(n, t.tri.v2)));
+    }
+    next_tri += n.count();
+    return 1;
+  }
+  CHECK(n.axis() <= 2);
+  const uint32_t first = index + 1, second = n.offset;
+  REQUIRE(second > first);
+  REQUIRE(second < bvh.nodes.size());
+  CHECK(contains(n, bvh.nodes[first]));
+  CHECK(contains(n, bvh.nodes[second]));
+  // Tight: the node is exactly the union of its children.
+  for (int a = 0; a < 3; ++a) {
+    CHECK(n.lo[a] == std::min(bvh.nodes[first].lo[a], bvh.nodes[second].lo[a]));
+    CHECK(n.hi[a] == std::max(bvh.nodes[first].hi[a], bvh.nodes[second].hi[a]));
+  }
+  const int axis = static_cast<int>(n.axis());
+  const double c_first = double(bvh.nodes[first].lo[axis]) + bvh.nodes[first].hi[axis];
+  const double c_second = double(bvh.nodes[second].lo[axis]) + bvh.nodes[second].hi[axis];
+  CHECK(c_first <= c_second);  // first child on the low side of the split axis
+  const int depth_first = check_subtree(bvh, first, next_tri, seen, max_leaf);
+  const int depth_second = check_subtree(bvh, second, next_tri, seen, max_leaf);
+  return 1 + std::max(depth_first, depth_second);
+}
+
+// Counts the nodes of the subtree at `index` (to verify depth-first contiguity).
+uint32_t subtree_size(const Bvh& bvh, uint32_t index) {
+  const BvhNode& n = bvh.nodes[index];
+  if (n.is_leaf()) return 1;
+  return 1 + subtree_size(bvh, index + 1) + subtree_size(bvh, n.offset);
+}
+
+void check_structure(const Scene& scene, const Bvh& bvh, int max_leaf) {
+  REQUIRE(!bvh.nodes.empty());
+  REQUIRE(bvh.tris.size() == scene.triangles.size());
+  std::vector<int> seen(scene.triangles.size(), 0);
+  uint32_t next_tri = 0;
+  const int depth = check_subtree(bvh, 0, next_tri, seen, max_leaf);
+  CHECK(depth == bvh.depth);
+  CHECK(next_tri == bvh.tris.size());
+  CHECK(std::count(seen.begin(), seen.end(), 1) == static_cast<long>(seen.size()));
+  CHECK(subtree_size(bvh, 0) == bvh.nodes.size());
+  // Second child starts right after the first child's subtree.
+  for (uint32_t i = 0; i < bvh.nodes.size(); ++i)
+    if (!bvh.nodes[i].is_leaf()) CHECK(bvh.nodes[i].offset == i + 1 + subtree_size(bvh, i + 1));
+  for (const BvhTriangle& t : bvh.tris) {
+    const Triangle& s = scene.triangles[t.prim];
+    CHECK((t.tri.v0 == s.v0 && t.tri.v1 == s.v1 && t.tri.v2 == s.v2));
+  }
+  const BvhNode& root = bvh.nodes[0];
+  CHECK(Vec3f{root.lo[0], root.lo[1], root.lo[2]} == scene.bounds.lo);
+  CHECK(Vec3f{root.hi[0], root.hi[1], root.hi[2]} == scene.bounds.hi);
+}
+
+// ---- Brute-force reference in double -------------------------------------
+
+struct Ray {
+  double o[3], d[3];
+  double tnear, tfar;
+};
+
+// Plain Moller-Trumbore in double without range checks: the ray's plane hit t
+// and barycentrics (u, v) of triangle `tri`; false for a ray parallel to it.
+bool plane_hit(const Triangle& tri, const Ray& r, double& t, double& u, double& v) {
+  const double v0[3] = {tri.v0.x, tri.v0.y, tri.v0.z};
+  double e1[3], e2[3], s[3];
+  for (int a = 0; a < 3; ++a) {
+    e1[a] = double(tri.v1[a]) - v0[a];
+    e2[a] = double(tri.v2[a]) - v0[a];
+    s[a] = r.o[a] - v0[a];
+  }
+  const double p[3] = {r.d[1] * e2[2] - r.d[2] * e2[1], r.d[2] * e2[0] - r.d[0] * e2[2],
+                       r.d[0] * e2[1] - r.d[1] * e2[0]};
+  const double det = e1[0] * p[0] + e1[1] * p[1] + e1[2] * p[2];
+  if (det == 0.0) return false;
+  const double q[3] = {s[1] * e1[2] - s[2] * e1[1], s[2] * e1[0] - s[0] * e1[2], s[0] * e1[1] - s[1] * e1[0]};
+  u = (s[0] * p[0] + s[1] * p[1] + s[2] * p[2]) / det;
+  v = (r.d[0] * q[0] + r.d[1] * q[1] + r.d[2] * q[2]) / det;
+  t = (e2[0] * q[0] + e2[1] * q[1] + e2[2] * q[2]) / det;
+  return true;
+}
+
+constexpr double kMargin = 1e-4;  // conditioning margin (barycentric and relative t)
+
+// Closest hit over a set of candidate triangles, with a flag telling whether
+// the answer is well conditioned (robust to float rounding).
+struct Closest {
+  int32_t prim = -1;
+  double t = std::numeric_limits<double>::infinity(), u = 0, v = 0;
+  bool well_conditioned = true;
+};
+
+template <class Candidates>
+Closest closest_hit(const Ray& r, const Candidates& candidates) {
+  Closest best;
+  double second = std::numeric_limits<double>::infinity();
+  double nearest_doubtful = std::numeric_limits<double>::infinity();  // near an edge or an end
+  for (const auto& [tri, prim] : candidates) {
+    double t, u, v;
+    if (!plane_hit(tri, r, t, u, v)) continue;
+    const double min_bary = std::min({1.0 - u - v, u, v});
+    const bool near_end = std::fabs(t - r.tnear) <= kMargin * std::fabs(t) ||
+                          (std::isfinite(r.tfar) && std::fabs(t - r.tfar) <= kMargin * r.tfar);
+    const bool in_range = t > r.tnear && t < r.tfar;
+    if (min_bary > kMargin && in_range && !near_end) {
+      if (t < best.t) {
+        second = best.t;
+        best.prim = static_cast<int32_t>(prim), best.t = t, best.u = u, best.v = v;
+      } else {
+        second = std::min(second, t);
+      }
+    } else if (min_bary >= -kMargin && t > r.tnear - kMargin * std::fabs(t) &&
+               t < r.tfar * (1 + kMargin)) {
+      nearest_doubtful = std::min(nearest_doubtful, t);
+    }
+  }
+  if (best.prim < 0)
+    best.well_conditioned = std::isinf(nearest_doubtful);
+  else
+    best.well_conditioned = second > best.t * (1 + kMargin) && nearest_doubtful > best.t * (1 + kMargin);
+  return best;
+}
+
+struct Candidate {
+  Triangle tri;
+  uint32_t prim;
+};
+
+// Slab test in double against float bounds, t in [tnear, tfar].
+bool enters(const BvhNode& n, const Ray& r) {
+  double t0 = r.tnear, t1 = r.tfar;
+  for (int a = 0; a < 3; ++a) {
+    if (r.d[a] == 0.0) {
+      if (r.o[a] < n.lo[a] || r.o[a] > n.hi[a]) return false;
+      continue;
+    }
+    double near = (n.lo[a] - r.o[a]) / r.d[a], far = (n.hi[a] - r.o[a]) / r.d[a];
+    if (near > far) std::swap(near, far);
+    t0 = std::max(t0, near);
+    t1 = std::min(t1, far);
+  }
+  return t0 <= t1;
+}
+
+// Simple recursive traversal: every triangle in every leaf the ray enters.
+void gather(const Bvh& bvh, uint32_t index, const Ray& r, std::vector<Candidate>& out) {
+  const BvhNode& n = bvh.nodes[index];
+  if (!enters(n, r)) return;
+  if (n.is_leaf()) {
+    for (uint32_t i = n.offset; i < n.offset + n.count(); ++i) out.push_back({bvh.tris[i].tri, bvh.tris[i].prim});
+    return;
+  }
+  gather(bvh, index + 1, r, out);
+  gather(bvh, n.offset, r, out);
+}
+
+// Random rays from a sphere around the scene toward random points in its box;
+// every other ray ends near its target point (finite tfar).
+std::vector<Ray> random_rays(const Scene& scene, uint32_t seed, int count) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> unit(0.0, 1.0), sym(-1.0, 1.0);
+  const Vec3f lo = scene.bounds.lo, hi = scene.bounds.hi;
+  const double radius = 2.0 * length(hi - lo);
+  std::vector<Ray> rays;
+  for (int i = 0; i < count; ++i) {
+    double dir[3], norm2;
+    do {
+      for (double& x : dir) x = sym(rng);
+      norm2 = dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2];
+    } while (norm2 > 1.0 || norm2 < 1e-6);
+    Ray r;
+    for (int a = 0; a < 3; ++a) {
+      const double centre = 0.5 * (double(lo[a]) + hi[a]);
+      const double target = lo[a] + unit(rng) * (double(hi[a]) - lo[a]);
+      // Float32 origin and direction, as a trace carries them.
+      r.o[a] = static_cast<float>(centre + radius * dir[a] / std::sqrt(norm2));
+      r.d[a] = static_cast<float>(target - r.o[a]);
+    }
+    r.tnear = 0.0;
+    r.tfar = (i % 2 == 0) ? std::numeric_limits<double>::infinity() : static_cast<float>(0.5 + unit(rng));
+    rays.push_back(r);
+  }
+  return rays;
+}
+
+// Returns how many rays were well conditioned (and therefore compared).
+int cross_check(const Scene& scene, const Bvh& bvh, const EmbreeReference& embree, uint32_t seed, int count,
+                int& hits) {
+  std::vector<Candidate> all;
+  for (size_t k = 0; k < scene.triangles.size(); ++k) all.push_back({scene.triangles[k], uint32_t(k)});
+  std::vector<Candidate> gathered;
+  int compared = 0;
+  hits = 0;
+  for (const Ray& r : random_rays(scene, seed, count)) {
+    const Closest brute = closest_hit(r, all);
+    if (!brute.well_conditioned) continue;
+    ++compared;
+    hits += brute.prim >= 0;
+
+    gathered.clear();
+    gather(bvh, 0, r, gathered);
+    const Closest through_bvh = closest_hit(r, gathered);
+    CHECK(through_bvh.prim == brute.prim);
+
+    int32_t prim = -1;
+    float t = 0, u = 0, v = 0;
+    const Vec3f o{float(r.o[0]), float(r.o[1]), float(r.o[2])};
+    const Vec3f d{float(r.d[0]), float(r.d[1]), float(r.d[2])};
+    const bool hit = embree.intersect(o, d, float(r.tnear), float(r.tfar), prim, t, u, v);
+    CHECK(hit == (brute.prim >= 0));
+    CHECK(prim == brute.prim);
+    if (hit && prim == brute.prim) {
+      CHECK(t == Approx(brute.t).epsilon(1e-5));
+      CHECK(u == Approx(brute.u).margin(1e-4));
+      CHECK(v == Approx(brute.v).margin(1e-4));
+    }
+  }
+  return compared;
+}
+
+}  // namespace
+
+TEST_CASE("bunny BVH: every triangle in one leaf, bounds nested and tight", "[bvh]") {
+  const Scene bunny = load_scene(kBunnyPath);
+  for (int max_leaf : {1, 4, 8}) {
+    CAPTURE(max_leaf);
+    const Bvh bvh = build_bvh(bunny, {max_leaf});
+    check_structure(bunny, bvh, max_leaf);
+  }
+}
+
+TEST_CASE("random soup BVHs satisfy the layout contract", "[bvh]") {
+  for (uint32_t seed : {1u, 2u, 3u}) {
+    const Scene soup = random_soup(seed, 400);
+    for (int max_leaf : {1, 2, 5, 16}) {
+      CAPTURE(seed, max_leaf);
+      check_structure(soup, build_bvh(soup, {max_leaf}), max_leaf);
+    }
+  }
+}
+
+TEST_CASE("tiny scenes: one triangle is a root leaf, an empty scene has no triangles", "[bvh]") {
+  const Scene one = make_scene({Triangle{{0, 0, 0}, {1, 0, 0}, {0, 2, 3}}});
+  const Bvh single = build_bvh(one);
+  REQUIRE(single.nodes.size() == 1);
+  CHECK(single.nodes[0].count() == 1);
+  CHECK(single.nodes[0].offset == 0);
+  CHECK(single.depth == 1);
+  CHECK(single.tris.size() == 1);
+  CHECK(single.nodes[0].hi[2] == 3.0f);
+
+  const Bvh empty = build_bvh(make_scene({}));
+  REQUIRE(empty.nodes.size() == 1);
+  CHECK(empty.tris.empty());
+  CHECK(empty.nodes[0].lo[0] > empty.nodes[0].hi[0]);  // inverted: no ray can enter it
+
+  CHECK_THROWS_AS(build_bvh(one, {0}), std::invalid_argument);
+  CHECK_THROWS_AS(build_bvh(one, {70000}), std::invalid_argument);
+}
+
+TEST_CASE("BVH builds are reproducible byte for byte", "[bvh]") {
+  const Scene soup = random_soup(7, 3000);
+  const Bvh a = build_bvh(soup), b = build_bvh(soup);
+  REQUIRE(a.nodes.size() == b.nodes.size());
+  REQUIRE(a.tris.size() == b.tris.size());
+  CHECK(std::memcmp(a.nodes.data(), b.nodes.data(), a.nodes.size() * sizeof(BvhNode)) == 0);
+  CHECK(std::memcmp(a.tris.data(), b.tris.data(), a.tris.size() * sizeof(BvhTriangle)) == 0);
+}
+
+TEST_CASE("closest hits through the bunny BVH agree with brute force and Embree", "[bvh]") {
+  const Scene bunny = load_scene(kBunnyPath);
+  const Bvh bvh = build_bvh(bunny);
+  const EmbreeReference embree(bunny);
+  int hits = 0;
+  const int compared = cross_check(bunny, bvh, embree, 11, 600, hits);
+  CHECK(compared > 500);  // most random rays are well conditioned
+  CHECK(hits > 100);      // and many of them hit the bunny
+}
+
+TEST_CASE("closest hits through random soup BVHs agree with brute force and Embree", "[bvh]") {
+  for (uint32_t seed : {21u, 22u}) {
+    const Scene soup = random_soup(seed, 300);
+    const Bvh bvh = build_bvh(soup, {3});
+    const EmbreeReference embree(soup);
+    int hits = 0;
+    const int compared = cross_check(soup, bvh, embree, seed, 800, hits);
+    CHECK(compared > 600);
+    CHECK(hits > 200);
+  }
+}
+
+TEST_CASE("EmbreeReference of an empty scene misses", "[bvh]") {
+  const EmbreeReference embree(make_scene({}));
+  int32_t prim = 7;
+  float t = 0, u = 0, v = 0;
+  CHECK_FALSE(embree.intersect({0, 0, 0}, {1, 0, 0}, 0, INFINITY, prim, t, u, v));
+  CHECK(prim == 7);
+}
+
+TEST_CASE("bvh_stats of two separate triangles match a hand count", "[bvh]") {
+  // Flat boxes [0,1]x[0,1]x{0} and [9,10]x[0,1]x{0}: area 2 each, root area 20.
+  const Scene two = make_scene({Triangle{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, Triangle{{9, 0, 0}, {10, 0, 0}, {10, 1, 0}}});
+  const BvhStats s = compute_bvh_stats(build_bvh(two, {1}));
+  CHECK(s.nodes == 3);
+  CHECK(s.leaves == 2);
+  CHECK(s.triangles == 2);
+  CHECK(s.average_leaf_size == 1.0);
+  CHECK(s.max_leaf_size == 1);
+  CHECK(s.depth == 2);
+  CHECK(s.node_bytes == 96);
+  CHECK(s.triangle_bytes == 80);
+  CHECK(s.sah_cost == Approx(1.0 + 2.0 / 20 + 2.0 / 20));
+}
+
+TEST_CASE("bvh_stats of the bunny are consistent with its tree", "[bvh]") {
+  const Bvh bvh = build_bvh(load_scene(kBunnyPath));
+  const BvhStats s = compute_bvh_stats(bvh);
+  CHECK(s.nodes == 2 * s.leaves - 1);  // binary tree
+  CHECK(s.triangles == 3674);
+  CHECK(s.average_leaf_size * s.leaves == Approx(3674));
+  CHECK(s.max_leaf_size <= 4);
+  CHECK(s.depth == bvh.depth);
+  CHECK(s.node_bytes == 32 * s.nodes);
+  CHECK(s.sah_cost > 1.0);
+  CHECK(format_bvh_stats(s).find("SAH cost") != std::string::npos);
+}
