@@ -29,12 +29,19 @@
 // roundings on any path (e: 1, |Z|+e: 1, perm: 5, times g5: 1, sum of perms: 3),
 // so its true value is at most the computed value times (1-u)^-11 < 1 + 12u;
 // multiplying by kSlack = 1 + 2^-48 = 1 + 32u covers that and the rounding of
-// the product itself (then adding eta loses at most u(bound + eta)). eta = 2^-900 covers underflow: with |o| <= 2^130 every factor is
-// below 2^132, so the 2^-1075 absolute error of an underflowing product grows to
-// less than 2^-930 in total, in the value and in the bound.
+// the product itself (adding eta afterwards loses at most u(bound + eta)).
+// eta = 2^-900 covers underflow: with |o| <= 2^130 every factor is below 2^132,
+// so the 2^-1075 absolute error of an underflowing product grows to less than
+// 2^-930 in total, in the value and in the bound. Magnitudes stay below
+// 2^(3 * 132), so nothing overflows.
 // When |v| > bound, sign(v) = sign(det(X*, Y*, Z*)).
 //
-// Magnitudes stay below 2^(3 * 132), so nothing overflows.
+// Decisions. Edge signs certain and mixed: miss. All three certain and equal:
+// den has that sign and |den| = sum |e_k| lies in [sum(|v_k| - err_k),
+// sum(|v_k| + err_k)]; with N's sign certain, t lies in [N_lo / den_hi,
+// N_hi / den_lo]. Each end is a handful of roundings (<= 4) away from its exact
+// value, and is pushed outward by the factor 1 -+ 2^-48 (>= 32u); an end that
+// may have underflowed is replaced by 0 (lower) or raised by eta (upper).
 #include "exact/certified_filter.h"
 
 #include <algorithm>

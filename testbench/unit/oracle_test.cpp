@@ -27,19 +27,20 @@ mpq_class plane_offset(const ExactVec3& p, const Triangle& tri) {
   return test::det3(test::sub(p, v0), e1, e2);
 }
 
-// The oracle over three differently shaped BVHs of one scene.
+// The oracle over differently shaped BVHs of one scene: one leaf, median
+// splits with one triangle per leaf, and the project's SAH BVH (build_bvh).
 struct Oracles {
   Scene scene;
-  Bvh one_leaf, leaf1, leaf4;
+  Bvh one_leaf, leaf1, sah;
   Oracle a, b, c;
   explicit Oracles(std::vector<Triangle> tris)
       : scene(make_scene(std::move(tris))),
         one_leaf(test::single_leaf_bvh(scene)),
         leaf1(test::MedianBvhBuilder(scene, 1).build()),
-        leaf4(test::MedianBvhBuilder(scene, 4).build()),
+        sah(build_bvh(scene)),
         a(scene, one_leaf),
         b(scene, leaf1),
-        c(scene, leaf4) {}
+        c(scene, sah) {}
 
   // Checks all three against the reference and returns the ties.
   std::vector<int32_t> ties(const ExactRay& ray) const {
@@ -189,6 +190,14 @@ TEST_CASE("intended_ray: parent plane point, then parent_uv, then projection", "
   }
 }
 
+TEST_CASE("an empty scene answers misses", "[oracle]") {
+  const Scene empty = make_scene({});
+  const Bvh bvh = build_bvh(empty);
+  const Oracle oracle(empty, bvh);
+  CHECK(oracle.answer(make_ray({0, 0, 0}, {0, 0, 1})).prim == -1);
+  CHECK(oracle.closest_ties(make_ray({0, 0, 0}, {0, 0, 1})).empty());
+}
+
 TEST_CASE("fill_expect writes the exact answers", "[oracle]") {
   const Scene scene = make_scene({tri({-1, -1, 3}, {5, -1, 3}, {-1, 5, 3}), tri({0, 0, 0}, {1, 0, 0}, {0, 1, 0})});
   const Bvh bvh = test::MedianBvhBuilder(scene, 1).build();
@@ -216,6 +225,7 @@ TEST_CASE("the oracle rejects a BVH that does not cover the scene", "[oracle]") 
   const Scene scene = make_scene({tri({0, 0, 0}, {1, 0, 0}, {0, 1, 0}), tri({0, 0, 1}, {1, 0, 1}, {0, 1, 1})});
   Bvh bvh = test::MedianBvhBuilder(scene, 1).build();
   CHECK_NOTHROW(Oracle(scene, bvh));
+  CHECK_NOTHROW(Oracle(scene, build_bvh(scene, {1})));
   const Scene twins = make_scene({scene.triangles[0], scene.triangles[0]});
   Bvh twice = test::MedianBvhBuilder(twins, 1).build();
   twice.tris[1].prim = twice.tris[0].prim;
