@@ -27,9 +27,13 @@ ExactRay intended_ray(const TraceRay& ray, const Scene& scene, const ParentRays*
 
 class Oracle {
  public:
+  /// Checks that `bvh` covers `scene` (every triangle in exactly one leaf, boxes
+  /// nested and enclosing their triangles); throws std::invalid_argument if not.
   Oracle(const Scene& scene, const Bvh& bvh);
   /// Closest exact hit of the intended ray; for ties, the smallest prim id.
   OracleAnswer answer(const ExactRay& ray) const;
+  /// Every triangle at the exact smallest t (ascending ids); empty on a miss.
+  std::vector<int32_t> closest_ties(const ExactRay& ray) const;
 
  private:
   const Scene& scene_;
