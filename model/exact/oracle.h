@@ -8,6 +8,7 @@
 #include "exact/exact_geometry.h"
 #include "scene/bvh.h"
 #include "scene/scene.h"
+#include "trace/parent_rays.h"
 #include "trace/trace_record.h"
 
 namespace vbsim {
@@ -18,8 +19,6 @@ struct OracleAnswer {
   mpq_class t_exact;     ///< exact t (valid when prim >= 0)
 };
 
-/// Parent rays needed for intended origins: id -> (o, d) of every ray in the trace.
-using ParentRays = std::unordered_map<int64_t, std::pair<Vec3f, Vec3f>>;
 
 /// Intended ray of a trace ray (spec "The exact answer", step 1 and 2).
 /// `parents` may be null (then parent_uv, then projection of o is used).

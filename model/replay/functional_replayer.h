@@ -49,7 +49,7 @@ class FunctionalReplayer {
   const Bvh& bvh_;
   ReplayOptions opt_;
   CandidateFilter filter_;
-  ParentRayMap parents_;
+  ParentRays parents_;
   bool track_parents_ = true;
   ReplayStats stats_;
 };

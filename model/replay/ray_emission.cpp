@@ -27,7 +27,7 @@ float scene_exit_t(const Scene& scene, Vec3f o, Vec3f d) {
 
 /// Start point of the child before any method acts, per the hit-point mode.
 Vec3f base_origin(const TraceRay& tr, const Scene& scene, HitPointMode mode,
-                  const ParentRayMap* parents, bool& fallback) {
+                  const ParentRays* parents, bool& fallback) {
   if (mode == HitPointMode::Given || tr.parent_prim < 0) return tr.o;
   if (mode == HitPointMode::Ray) {
     if (tr.has_parent_t && parents) {
@@ -73,7 +73,7 @@ uint8_t parent_sign_bit(const TraceRay& tr, const Scene& scene) {
 }
 
 EmittedRay emit_ray(const TraceRay& tr, const Scene& scene, const ReplayOptions& opt,
-                    const ParentRayMap* parents) {
+                    const ParentRays* parents) {
   const SelfIntersectionMethod& m = opt.method;
   EmittedRay out;
   Ray& r = out.ray;

@@ -4,19 +4,14 @@
 // tmin, reverse shadow) and the parent sign bit (computed when the trace omits it).
 #pragma once
 #include <cstdint>
-#include <unordered_map>
-#include <utility>
 
 #include "datapath/ray.h"
 #include "replay/replay_options.h"
 #include "scene/scene.h"
+#include "trace/parent_rays.h"
 #include "trace/trace_record.h"
 
 namespace vbsim {
-
-/// id -> (o, d) of the rays seen so far: parents for ray-equation hit points
-/// and for intended origins.
-using ParentRayMap = std::unordered_map<int64_t, std::pair<Vec3f, Vec3f>>;
 
 struct EmittedRay {
   Ray ray;
@@ -30,6 +25,6 @@ uint8_t parent_sign_bit(const TraceRay& tr, const Scene& scene);
 
 /// The ray the accelerator receives for `tr` under `opt`. `parents` may be null.
 EmittedRay emit_ray(const TraceRay& tr, const Scene& scene, const ReplayOptions& opt,
-                    const ParentRayMap* parents);
+                    const ParentRays* parents);
 
 }  // namespace vbsim

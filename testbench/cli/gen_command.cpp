@@ -51,7 +51,7 @@ void run_gen(const GenArgs& a) {
       a.paths, fs::path(a.scene).filename().string());
   auto sink = create_trace_writer(out.string(), h);
   const Oracle oracle(scene, bvh);
-  ParentRayMap parents;
+  ParentRays parents;
   for (TraceRay& tr : g.rays) {
     const OracleAnswer ans = oracle.answer(intended_ray(tr, scene, &parents));
     tr.has_expect = true;

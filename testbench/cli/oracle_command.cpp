@@ -26,7 +26,7 @@ void run_oracle(const OracleArgs& a) {
   header.scene = scene_relative_to(header.scene_path, a.out);
   auto sink = create_trace_writer(a.out, header);
   const Oracle oracle(sb.scene, sb.bvh);
-  ParentRayMap parents;  // parents must precede children, as in a replay
+  ParentRays parents;  // parents must precede children, as in a replay
   TraceRay tr;
   int64_t rays = 0, hits = 0;
   const auto t0 = std::chrono::steady_clock::now();
