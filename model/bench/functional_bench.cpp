@@ -24,6 +24,8 @@ nlohmann::json BenchResult::to_json() const {
           {"vbsim_hits", vbsim_hits},
           {"embree_hits", embree_hits},
           {"same_prim", same_prim},
+          {"box_tests_per_ray", box_tests_per_ray},
+          {"triangle_tests_per_ray", triangle_tests_per_ray},
           {"bvh_build_s", bvh_build_s},
           {"embree_build_s", embree_build_s}};
 }
@@ -65,6 +67,9 @@ BenchResult run_functional_bench(const Scene& scene, const ReplayOptions& opt, c
     t0 = Clock::now();
     for (size_t i = 0; i < rays.size(); ++i) ours[i] = replayer.replay(rays[i]).answer;
     best_vbsim = std::min(best_vbsim, seconds_since(t0));
+    const KindStats total = replayer.stats().total();
+    res.box_tests_per_ray = static_cast<double>(total.traversal.box_tests) / p.rays;
+    res.triangle_tests_per_ray = static_cast<double>(total.traversal.triangle_tests) / p.rays;
 
     t0 = Clock::now();
     for (size_t i = 0; i < rays.size(); ++i) {

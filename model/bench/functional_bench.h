@@ -28,6 +28,8 @@ struct BenchResult {
   int64_t vbsim_hits = 0;
   int64_t embree_hits = 0;
   int64_t same_prim = 0;     ///< rays where both returned the same triangle (or both missed)
+  double box_tests_per_ray = 0;       ///< vbsim's traversal work per ray
+  double triangle_tests_per_ray = 0;
   double bvh_build_s = 0;
   double embree_build_s = 0;
   nlohmann::json to_json() const;
