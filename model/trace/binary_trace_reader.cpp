@@ -53,8 +53,7 @@ BinaryTraceReader::BinaryTraceReader(std::string path) : path_(std::move(path)) 
                                                        padded));
   header_text.resize(header_bytes);
   try {
-    JsonObjectLineParser parser;
-    header_ = parse_trace_header(parser.parse(header_text), path_);
+    header_ = parse_trace_header(parse_json_object_line(header_text), path_);
   } catch (const TraceFieldProblem& p) {
     throw TraceError::in_header(path_, p.field, p.message);
   }

@@ -92,19 +92,17 @@ void parse_trace_ray(const json& object, TraceRay& out) {
 }  // namespace
 
 TextTraceReader::TextTraceReader(std::string path)
-    : path_(std::move(path)), parser_(std::make_unique<JsonObjectLineParser>()) {
+    : path_(std::move(path)) {
   in_.open(path_, std::ios::in | std::ios::binary);
   if (!in_) throw TraceError::in_file(path_, fmt::format("cannot open: {}", std::strerror(errno)));
   if (!read_content_line())
     throw TraceError::in_file(path_, "empty: no header line");
   try {
-    header_ = parse_trace_header(parser_->parse(line_), path_);
+    header_ = parse_trace_header(parse_json_object_line(line_), path_);
   } catch (const TraceFieldProblem& p) {
     throw TraceError::at_line(path_, line_number_, p.field, p.message);
   }
 }
-
-TextTraceReader::~TextTraceReader() = default;
 
 bool TextTraceReader::read_content_line() {
   while (std::getline(in_, line_)) {
@@ -119,7 +117,7 @@ bool TextTraceReader::next(TraceRay& out) {
   if (!read_content_line()) return false;
   TraceFieldProblem problem;
   try {
-    parse_trace_ray(parser_->parse(line_), out);
+    parse_trace_ray(parse_json_object_line(line_), out);
   } catch (const TraceFieldProblem& p) {
     throw TraceError::at_line(path_, line_number_, p.field, p.message);
   }

@@ -4,7 +4,6 @@
 #pragma once
 #include <cstdint>
 #include <fstream>
-#include <memory>
 #include <string>
 
 #include "trace/trace_source.h"
@@ -12,14 +11,11 @@
 
 namespace vbsim {
 
-class JsonObjectLineParser;
-
 class TextTraceReader final : public TraceSource {
  public:
   /// Opens `path` and reads and validates its header line (blank lines and
   /// '#' comment lines before it are skipped). Throws TraceError.
   explicit TextTraceReader(std::string path);
-  ~TextTraceReader() override;
 
   const TraceHeader& header() const override { return header_; }
   /// Next ray in file order; false at the end. Throws TraceError naming the
@@ -43,7 +39,6 @@ class TextTraceReader final : public TraceSource {
   int64_t line_number_ = 0;
   TraceHeader header_;
   TraceRayValidator validator_;
-  std::unique_ptr<JsonObjectLineParser> parser_;
 };
 
 }  // namespace vbsim

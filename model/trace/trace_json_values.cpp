@@ -2,6 +2,8 @@
 
 #include <cfloat>
 #include <cmath>
+#include <cstdlib>
+#include <cstring>
 #include <iterator>
 #include <limits>
 
@@ -11,23 +13,46 @@ namespace {
 
 using json = nlohmann::json;
 
-/// Doubles at or beyond this magnitude round to infinity in float32: the
-/// midpoint between FLT_MAX and 2^128 (a tie rounds to even, i.e. to 2^128).
+/// The midpoint between FLT_MAX and 2^128: doubles above it round to infinity
+/// in float32, and it is itself a tie (decided by the decimal it came from).
 constexpr double kFloat32OverflowBound = 0x1.ffffffp127;
 
 [[noreturn]] void problem(const char* field, std::string message) {
   throw TraceFieldProblem{field, std::move(message)};
 }
 
+/// A float32 tie as parse_json_object_line stores it: the double, then the float32.
+constexpr std::size_t kTieBytes = sizeof(double) + sizeof(float);
+
+json tie_value(double d, float nearest) {
+  std::vector<uint8_t> bytes(kTieBytes);
+  std::memcpy(bytes.data(), &d, sizeof d);
+  std::memcpy(bytes.data() + sizeof d, &nearest, sizeof nearest);
+  return json::binary(std::move(bytes));
+}
+bool is_tie_value(const json& v) { return v.is_binary() && v.get_binary().size() == kTieBytes; }
+double tie_double(const json& v) {
+  double d;
+  std::memcpy(&d, v.get_binary().data(), sizeof d);
+  return d;
+}
+float tie_float32(const json& v) {
+  float f;
+  std::memcpy(&f, v.get_binary().data() + sizeof(double), sizeof f);
+  return f;
+}
+
 /// A short rendering of a JSON value for messages.
 std::string shown(const json& v) {
+  if (is_tie_value(v)) return fmt::format("{}", tie_double(v));
   std::string s = v.dump();
   if (s.size() > 40) s = s.substr(0, 37) + "...";
   return s;
 }
 
-/// Text after nlohmann's "[json.exception.x.n] " prefix and its "line 1, column n: ".
-std::string json_error_text(const char* what) {
+/// Text of a nlohmann exception without its "[json.exception.x.n] " prefix and
+/// its "line 1, column n: " position (the caller reports the position itself).
+std::string json_error_text(const std::string& what) {
   std::string w = what;
   std::size_t p = w.find("] ");
   if (p != std::string::npos) w = w.substr(p + 2);
@@ -39,53 +64,111 @@ std::string json_error_text(const char* what) {
   return w;
 }
 
-}  // namespace
+/// Builds the DOM of one line from nlohmann's SAX events, so that a number's
+/// text is at hand (for float32 ties) and a repeated key is seen when it arrives.
+class LineSax {
+ public:
+  explicit LineSax(json& root) : root_(root) {}
 
-json JsonObjectLineParser::parse(std::string_view text) {
-  keys_.clear();
-  scopes_.clear();
-  last_top_key_.clear();
-  duplicate_.clear();
-  auto callback = [this](int /*depth*/, json::parse_event_t event, json& parsed) {
-    switch (event) {
-      case json::parse_event_t::object_start: scopes_.push_back(keys_.size()); break;
-      case json::parse_event_t::object_end:
-        if (!scopes_.empty()) {
-          keys_.resize(scopes_.back());
-          scopes_.pop_back();
-        }
-        break;
-      case json::parse_event_t::key: {
-        const std::string& key = parsed.get_ref<const std::string&>();
-        if (!scopes_.empty() && duplicate_.empty()) {
-          for (std::size_t i = scopes_.back(); i < keys_.size(); ++i)
-            if (keys_[i] == key)
-              duplicate_ = scopes_.size() == 1 ? key : last_top_key_ + "." + key;
-        }
-        if (scopes_.size() == 1) last_top_key_ = key;
-        keys_.push_back(key);
-        break;
-      }
-      default: break;
+  bool null() { return put(json(nullptr)); }
+  bool boolean(bool v) { return put(json(v)); }
+  bool number_integer(json::number_integer_t v) { return put(json(v)); }
+  bool number_unsigned(json::number_unsigned_t v) { return put(json(v)); }
+  bool number_float(json::number_float_t v, const std::string& text) {
+    // nlohmann wrote the locale's decimal point into `text`, as strtof expects.
+    if (is_float32_tie(v)) return put(tie_value(v, std::strtof(text.c_str(), nullptr)));
+    return put(json(v));
+  }
+  bool string(std::string& v) { return put(json(std::move(v))); }
+  bool binary(json::binary_t&) { return fail("", "binary values are not JSON text"); }
+  bool start_object(std::size_t) { return open(json::object()); }
+  bool start_array(std::size_t) { return open(json::array()); }
+  bool end_object() { return close(); }
+  bool end_array() { return close(); }
+  bool key(std::string& k) {
+    json& object = *stack_.back();
+    if (stack_.size() == 1) top_key_ = k;
+    key_path_ = stack_.size() == 1 ? k : top_key_ + "." + k;
+    if (object.contains(k)) return fail(key_path_, "appears twice");
+    key_ = std::move(k);
+    return true;
+  }
+  bool parse_error(std::size_t position, const std::string&, const nlohmann::detail::exception& e) {
+    // Number overflow (id 406) comes after the number's key: name that field.
+    if (e.id == 406) return fail(stack_.empty() ? "" : key_path_, json_error_text(e.what()));
+    return fail("", fmt::format("bad JSON at column {}: {}", position, json_error_text(e.what())));
+  }
+
+  /// The first problem met, if any (parsing stops there).
+  const TraceFieldProblem* problem() const { return failed_ ? &problem_ : nullptr; }
+
+ private:
+  bool put(json&& v) {
+    if (stack_.empty()) {
+      root_ = std::move(v);
+    } else if (stack_.back()->is_array()) {
+      stack_.back()->push_back(std::move(v));
+    } else {
+      (*stack_.back())[key_] = std::move(v);
     }
     return true;
-  };
+  }
+  bool open(json&& container) {
+    json* slot;
+    if (stack_.empty()) {
+      root_ = std::move(container);
+      slot = &root_;
+    } else if (stack_.back()->is_array()) {
+      stack_.back()->push_back(std::move(container));
+      slot = &stack_.back()->back();
+    } else {
+      slot = &((*stack_.back())[key_] = std::move(container));
+    }
+    stack_.push_back(slot);  // stays valid: its parent grows only after it closes
+    return true;
+  }
+  bool close() {
+    stack_.pop_back();
+    return true;
+  }
+  bool fail(std::string field, std::string message) {
+    if (!failed_) problem_ = TraceFieldProblem{std::move(field), std::move(message)};
+    failed_ = true;
+    return false;
+  }
+
+  json& root_;
+  std::vector<json*> stack_;  ///< containers being filled, innermost last
+  std::string key_;           ///< key of the next value in the innermost object
+  std::string top_key_;       ///< latest key of the outermost object
+  std::string key_path_;      ///< latest key, as "key" or "outer.key"
+  bool failed_ = false;
+  TraceFieldProblem problem_;
+};
+
+}  // namespace
+
+bool is_float32_tie(double d) {
+  double a = std::fabs(d);
+  if (a == kFloat32OverflowBound) return true;
+  if (!(a < FLT_MAX)) return false;  // beyond FLT_MAX only the bound itself is a tie
+  float f = static_cast<float>(a);
+  if (static_cast<double>(f) == a) return false;
+  float other = static_cast<double>(f) < a ? std::nextafter(f, INFINITY) : std::nextafter(f, 0.0f);
+  // The sum of two adjacent float32 values is exact in double, and so is the halving.
+  return a == (static_cast<double>(f) + static_cast<double>(other)) * 0.5;
+}
+
+json parse_json_object_line(std::string_view text) {
   json value;
-  try {
-    value = json::parse(text.begin(), text.end(), callback);
-  } catch (const json::parse_error& e) {
-    throw TraceFieldProblem{"", fmt::format("bad JSON at column {}: {}", e.byte,
-                                            json_error_text(e.what()))};
-  } catch (const json::out_of_range& e) {
-    // A number too large for a double: nlohmann throws while reading the value
-    // of the key it last reported.
-    throw TraceFieldProblem{last_top_key_, json_error_text(e.what())};
-  } catch (const json::exception& e) {
-    throw TraceFieldProblem{"", fmt::format("bad JSON: {}", json_error_text(e.what()))};
+  LineSax sax(value);
+  bool ok = json::sax_parse(text.begin(), text.end(), &sax, json::input_format_t::json, true);
+  if (!ok || sax.problem()) {
+    if (sax.problem()) throw *sax.problem();
+    throw TraceFieldProblem{"", "bad JSON"};
   }
   if (!value.is_object())
     throw TraceFieldProblem{"", fmt::format("expected a JSON object, got {}", shown(value))};
-  if (!duplicate_.empty()) throw TraceFieldProblem{duplicate_, "appears twice"};
   return value;
 }
 
@@ -108,6 +191,7 @@ int32_t json_int32(const json& v, const char* field) {
 }
 
 double json_double(const json& v, const char* field) {
+  if (is_tie_value(v)) return tie_double(v);
   if (!v.is_number()) problem(field, fmt::format("expected a number, got {}", shown(v)));
   double d = v.get<double>();
   if (!std::isfinite(d)) problem(field, fmt::format("{} is not finite", d));
@@ -115,13 +199,23 @@ double json_double(const json& v, const char* field) {
 }
 
 float json_float32(const json& v, const char* field) {
+  // Integers convert in one rounding (going through double could round twice).
+  if (v.is_number_unsigned()) return static_cast<float>(v.get<uint64_t>());
+  if (v.is_number_integer()) return static_cast<float>(v.get<int64_t>());
   double d = json_double(v, field);
-  if (std::fabs(d) >= kFloat32OverflowBound)
+  float f;
+  if (is_tie_value(v)) {
+    f = tie_float32(v);  // the decimal decides; strtof gives inf past the overflow bound
+  } else if (std::fabs(d) > kFloat32OverflowBound) {
+    f = static_cast<float>(d > 0 ? INFINITY : -INFINITY);
+  } else if (std::fabs(d) > FLT_MAX) {
+    f = d > 0 ? FLT_MAX : -FLT_MAX;  // nearest float32; avoids an out-of-range conversion
+  } else {
+    f = static_cast<float>(d);
+  }
+  if (std::isinf(f))
     problem(field, fmt::format("{} overflows float32 (largest finite float32: {})", d, FLT_MAX));
-  // Between FLT_MAX and the bound the nearest float32 is FLT_MAX; clamp so the
-  // conversion below never sees an out-of-range value.
-  if (std::fabs(d) > FLT_MAX) return d > 0 ? FLT_MAX : -FLT_MAX;
-  return static_cast<float>(d);
+  return f;
 }
 
 void json_float32_array(const json& v, const char* field, float* out, std::size_t n) {
@@ -147,7 +241,17 @@ void append_json_float(fmt::memory_buffer& out, float x) {
     fmt::format_to(std::back_inserter(out), "-0.0");
     return;
   }
-  fmt::format_to(std::back_inserter(out), "{}", x);
+  char text[32];
+  char* end = fmt::format_to_n(text, sizeof text - 1, "{}", x).out;
+  *end = '\0';
+  // A reader that parses a double and rounds it to float32 (Python's json with
+  // numpy, JavaScript) misreads the rare shortest decimal whose double is a
+  // float32 tie; print the float32's exact double value for those instead.
+  if (is_float32_tie(std::strtod(text, nullptr))) {
+    fmt::format_to(std::back_inserter(out), "{}", static_cast<double>(x));
+    return;
+  }
+  out.append(text, end);
 }
 
 void append_json_double(fmt::memory_buffer& out, double x) {

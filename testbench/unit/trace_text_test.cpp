@@ -6,6 +6,7 @@
 #include <cfloat>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <random>
 
 #include "trace/text_trace_reader.h"
@@ -223,6 +224,68 @@ TEST_CASE("text trace: random float32 bit patterns survive write and read", "[tr
   std::size_t differing = 0;
   for (std::size_t i = 0; i < rays.size(); ++i) differing += same_ray(rays[i], back[i]) ? 0 : 1;
   CHECK(differing == 0);
+}
+
+namespace {
+
+uint32_t bits_of(float x) {
+  uint32_t bits;
+  std::memcpy(&bits, &x, 4);
+  return bits;
+}
+
+/// What a reader that parses a double and then rounds it to float32 gets.
+float via_double(const char* decimal) { return static_cast<float>(std::strtod(decimal, nullptr)); }
+
+}  // namespace
+
+TEST_CASE("text trace: a decimal whose double is a float32 tie rounds as written", "[trace]") {
+  // 1 + 2^-24 = 1.000000059604644775390625 is halfway between 1 and the next
+  // float32. The two 17-digit decimals around it parse to exactly that double,
+  // and rounding the double (ties to even) gives 1 for both; rounded directly,
+  // the one above the midpoint is the next float32.
+  // 7.038531e-26 is the shortest decimal of float32 0x15ae43fd and the only
+  // positive finite float32 whose shortest decimal has a tie as its double
+  // (an exhaustive check over all 2^31 - 2^23 of them).
+  const float above_one = std::nextafter(1.0f, 2.0f);
+  REQUIRE(via_double("1.0000000596046448") == 1.0f);
+  REQUIRE(std::strtof("1.0000000596046448", nullptr) == above_one);
+  REQUIRE(bits_of(std::strtof("7.038531e-26", nullptr)) == 0x15ae43fdu);
+  REQUIRE(bits_of(via_double("7.038531e-26")) != 0x15ae43fdu);
+
+  TempDir dir("trace-text-ties");
+  std::string path = dir.file("ties.jsonl");
+  write_file(path,
+             R"({"format": "vbsim-trace", "version": 1, "scene": "s.obj", "light": [1.0000000596046448, 0, 0]})" "\n"
+             R"({"id": 0, "o": [1.0000000596046448, 1.0000000596046447, 1.000000059604644775390625], )"
+             R"("d": [7.038531e-26, -7.038531e-26, 1], "expect": {"prim": 0, "t": 1.0000000596046448}})" "\n");
+  TextTraceReader reader(path);
+  CHECK(reader.header().light->x == above_one);
+  TraceRay r;
+  REQUIRE(reader.next(r));
+  CHECK(r.o.x == above_one);
+  CHECK(r.o.y == 1.0f);
+  CHECK(r.o.z == 1.0f);  // exactly the midpoint: ties to even
+  CHECK(bits_of(r.d.x) == 0x15ae43fdu);
+  CHECK(bits_of(r.d.y) == 0x95ae43fdu);
+  CHECK(r.expect_t == 1.0000000596046448);  // a double field keeps the double
+
+  // The writer avoids such decimals, so double-first readers read it right too.
+  TraceHeader h;
+  h.scene = "s.obj";
+  std::string out = dir.file("out.jsonl");
+  {
+    TextTraceWriter writer(out, h);
+    writer.write(r);
+    writer.close();
+  }
+  std::string text = read_file(out);
+  std::size_t at = text.find("\"d\":[") + 5;
+  CHECK(bits_of(via_double(text.c_str() + at)) == 0x15ae43fdu);
+  TextTraceReader back(out);
+  TraceRay again;
+  REQUIRE(back.next(again));
+  CHECK(same_ray(again, r));
 }
 
 TEST_CASE("text trace: writer refuses rays a reader would reject", "[trace]") {
