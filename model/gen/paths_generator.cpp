@@ -28,8 +28,9 @@ DVec reflect(DVec d, DVec n) { return dadd(d, dscale(-2.0 * ddot(d, n), n)); }
 class PathBuilder {
  public:
   PathBuilder(const Scene& scene, const Bvh& bvh, const PathsParams& p, Vec3f light)
-      : scene_(scene), bvh_(bvh), p_(p), light_(light), rng_(p.seed), filter_(tracer_method()) {
-    tracer_opt_.method = tracer_method();
+      : scene_(scene), bvh_(bvh), p_(p), light_(light), rng_(p.seed),
+        filter_(tracer_method(scene)) {
+    tracer_opt_.method = tracer_method(scene);
   }
 
   void run(Vec3f camera, Vec3f center, float radius, std::vector<TraceRay>& out) {
@@ -47,10 +48,11 @@ class PathBuilder {
   }
 
  private:
-  static SelfIntersectionMethod tracer_method() {
+  static SelfIntersectionMethod tracer_method(const Scene& scene) {
     SelfIntersectionMethod m;
-    m.offset_errbound = true;
     m.primid = true;
+    m.tmin = true;
+    m.tmin_eps = 1e-6f * length(scene.bounds.hi - scene.bounds.lo);
     return m;
   }
 
@@ -64,13 +66,12 @@ class PathBuilder {
     const EmittedRay er = emit_ray(r, scene_, tracer_opt_, nullptr);
     const Hit h = closest_hit<ThreeHalfPlaneTester>(bvh_, er.ray, filter_, cc, tc);
     if (!h.valid() || depth >= p_.max_depth) return;
-    spawn_children(r, er.ray.o, h, ray_equation, depth);
+    spawn_children(r, h, ray_equation, depth);
   }
 
-  void spawn_children(const TraceRay& parent, Vec3f traced_o, const Hit& h, bool ray_equation,
-                      int depth) {
+  void spawn_children(const TraceRay& parent, const Hit& h, bool ray_equation, int depth) {
     const Triangle& tri = scene_.triangles[h.prim];
-    const Vec3f p = ray_equation ? hit_point_ray(traced_o, parent.d, h.t)
+    const Vec3f p = ray_equation ? hit_point_ray(parent.o, parent.d, h.t)
                                  : hit_point_barycentric(tri, h.u, h.v);
     const DVec ng = dunit(to_d(geometric_normal(tri)));
     const DVec d = dunit(to_d(parent.d));

@@ -5,9 +5,11 @@
 // the light, a reflection (about the shading normal), a refraction (index of
 // refraction `ior`; total internal reflection gives a `reflect` child) and a
 // diffuse child; the path continues along one of the three, chosen at random.
-// Child origins are the raw hit points, before any self-intersection offset;
-// the generator finds where a path continues with pbrt's error-bound offset
-// and primitive-ID exclusion. `expect` is left for the oracle.
+// Child origins are the raw hit points, before any self-intersection offset.
+// The generator finds where a path continues from that very origin (so that
+// parent_t and parent_uv are what its tester found for the recorded ray), with
+// primitive-ID exclusion and a tmin of 1e-6 of the scene's radius, as a renderer
+// might. `expect` is left for the oracle.
 #pragma once
 #include <cstdint>
 #include <vector>
