@@ -21,7 +21,12 @@ if ((${#missing[@]})); then
 fi
 
 build="${VBSIM_BUILD_DIR:-$root/build}"
+mkdir -p "$build"
+log="$build/setup-configure.log"
+# Build quietly; show the log only when something fails.
 if [ ! -f "$build/CMakeCache.txt" ]; then
-  cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release >&2
+  echo "vbsim setup: configuring and building in $build (first run takes a few minutes)" >&2
+  cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release > "$log" 2>&1 || { cat "$log" >&2; exit 1; }
 fi
-cmake --build "$build" -j "$(nproc)" >&2
+blog="$build/setup-build.log"
+cmake --build "$build" -j "$(nproc)" > "$blog" 2>&1 || { cat "$blog" >&2; exit 1; }
