@@ -9,16 +9,19 @@ ParentRays collect_parent_rays(const std::vector<TraceRay>& rays) {
   return parents;
 }
 
+OracleAnswer ExpectationFiller::fill(TraceRay& r) {
+  OracleAnswer a = oracle_.answer(intended_ray(r, scene_, &parents_));
+  r.has_expect = true;
+  r.expect_prim = a.prim;
+  r.has_expect_t = a.prim >= 0;
+  r.expect_t = a.prim >= 0 ? a.t : 0.0;
+  parents_[r.id] = {r.o, r.d};
+  return a;
+}
+
 void fill_expect(std::vector<TraceRay>& rays, const Scene& scene, const Bvh& bvh) {
-  const ParentRays parents = collect_parent_rays(rays);
-  const Oracle oracle(scene, bvh);
-  for (TraceRay& r : rays) {
-    const OracleAnswer a = oracle.answer(intended_ray(r, scene, &parents));
-    r.has_expect = true;
-    r.expect_prim = a.prim;
-    r.has_expect_t = a.prim >= 0;
-    r.expect_t = a.prim >= 0 ? a.t : 0.0;
-  }
+  ExpectationFiller filler(scene, bvh);
+  for (TraceRay& r : rays) filler.fill(r);
 }
 
 }  // namespace vbsim

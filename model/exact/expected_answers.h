@@ -1,4 +1,7 @@
 // Filling a trace's `expect` fields with the oracle's exact answers.
+// Parents are looked up among the rays that came before, in trace order, the
+// same way a replay finds them, so a trace's expectations and its verdicts use
+// the same intended origins.
 #pragma once
 #include <vector>
 
@@ -9,8 +12,22 @@ namespace vbsim {
 /// id -> (o, d) of every ray, the parents intended_ray looks up.
 ParentRays collect_parent_rays(const std::vector<TraceRay>& rays);
 
-/// Sets has_expect, expect_prim and (for hits) has_expect_t / expect_t, the exact
-/// t rounded to nearest double, on every ray; misses get expect_prim = -1 and no t.
+/// Streams a trace through the oracle, one ray at a time, in trace order.
+class ExpectationFiller {
+ public:
+  ExpectationFiller(const Scene& scene, const Bvh& bvh) : scene_(scene), oracle_(scene, bvh) {}
+  /// Sets has_expect, expect_prim and (for hits) has_expect_t / expect_t, the
+  /// exact t rounded to nearest double; a miss gets expect_prim = -1 and no t.
+  /// Returns the answer; remembers the ray as a parent for later rays.
+  OracleAnswer fill(TraceRay& ray);
+
+ private:
+  const Scene& scene_;
+  Oracle oracle_;
+  ParentRays parents_;
+};
+
+/// ExpectationFiller over a whole vector of rays.
 void fill_expect(std::vector<TraceRay>& rays, const Scene& scene, const Bvh& bvh);
 
 }  // namespace vbsim

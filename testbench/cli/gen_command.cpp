@@ -4,9 +4,8 @@
 #include <filesystem>
 
 #include "commands.h"
-#include "exact/oracle.h"
+#include "exact/expected_answers.h"
 #include "gen/paths_generator.h"
-#include "replay/ray_emission.h"
 #include "trace/trace_file.h"
 #include "trace/trace_header_json.h"
 
@@ -50,17 +49,8 @@ void run_gen(const GenArgs& a) {
       "equation on even paths, barycentric on odd ones; expect from the exact oracle",
       a.paths, fs::path(a.scene).filename().string());
   auto sink = create_trace_writer(out.string(), h);
-  const Oracle oracle(scene, bvh);
-  ParentRays parents;
-  for (TraceRay& tr : g.rays) {
-    const OracleAnswer ans = oracle.answer(intended_ray(tr, scene, &parents));
-    tr.has_expect = true;
-    tr.expect_prim = ans.prim;
-    tr.has_expect_t = ans.prim >= 0;
-    tr.expect_t = ans.prim >= 0 ? ans.t : 0.0;
-    sink->write(tr);
-    parents[tr.id] = {tr.o, tr.d};
-  }
+  fill_expect(g.rays, scene, bvh);
+  for (const TraceRay& tr : g.rays) sink->write(tr);
   sink->close();
   fmt::print("vbsim gen {}: {} rays -> {}\n", a.scenario, g.rays.size(), out.string());
 }

@@ -4,8 +4,7 @@
 #include <chrono>
 
 #include "commands.h"
-#include "exact/oracle.h"
-#include "replay/ray_emission.h"
+#include "exact/expected_answers.h"
 #include "replay/replay_run.h"
 #include "trace/trace_file.h"
 #include "trace/trace_header_json.h"
@@ -25,19 +24,13 @@ void run_oracle(const OracleArgs& a) {
   TraceHeader header = source->header();
   header.scene = scene_relative_to(header.scene_path, a.out);
   auto sink = create_trace_writer(a.out, header);
-  const Oracle oracle(sb.scene, sb.bvh);
-  ParentRays parents;  // parents must precede children, as in a replay
+  ExpectationFiller filler(sb.scene, sb.bvh);  // parents must precede children, as in a replay
   TraceRay tr;
   int64_t rays = 0, hits = 0;
   const auto t0 = std::chrono::steady_clock::now();
   while (source->next(tr)) {
-    const OracleAnswer ans = oracle.answer(intended_ray(tr, sb.scene, &parents));
-    tr.has_expect = true;
-    tr.expect_prim = ans.prim;
-    tr.has_expect_t = ans.prim >= 0;
-    tr.expect_t = ans.prim >= 0 ? ans.t : 0.0;
+    const OracleAnswer ans = filler.fill(tr);
     sink->write(tr);
-    parents[tr.id] = {tr.o, tr.d};
     ++rays;
     hits += ans.prim >= 0;
   }
