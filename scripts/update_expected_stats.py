@@ -45,7 +45,7 @@ def summary(stats):
         "verdicts": stats["verdicts"],
         "by_kind": {k: v["verdicts"] for k, v in stats["by_kind"].items()},
         "avoidance": {k: stats["avoidance"][k] for k in ("candidates", "suspects", "rejected")},
-        "hit_point_fallbacks": stats["hit_point_fallbacks"],
+        "emission_fallbacks": stats["emission_fallbacks"],
     }
 
 

@@ -34,7 +34,7 @@ RayOutcome FunctionalReplayer::replay(const TraceRay& tr) {
 
   ++ks.rays;
   ks.hits += out.answer >= 0;
-  ks.hit_point_fallbacks += er.hit_point_fallback;
+  ks.emission_fallbacks += er.emission_fallback;
   if (tr.has_expect) {
     out.scored = true;
     const bool need_exact = out.answer != tr.expect_prim && tr.kind != RayKind::Shadow && out.answer >= 0;

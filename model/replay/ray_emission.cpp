@@ -83,16 +83,18 @@ EmittedRay emit_ray(const TraceRay& tr, const Scene& scene, const ReplayOptions&
   r.kind = tr.kind;
   r.parent_prim = tr.parent_prim;
   r.sign = parent_sign_bit(tr, scene);
-  Vec3f p = base_origin(tr, scene, opt.hit_point, parents, out.hit_point_fallback);
+  Vec3f p = base_origin(tr, scene, opt.hit_point, parents, out.emission_fallback);
 
   if (tr.parent_prim >= 0) {
     const Triangle& tri = scene.triangles[tr.parent_prim];
     const Vec3f ng = geometric_normal(tri);
     const bool shadow = tr.kind == RayKind::Shadow;
-    if (shadow && (m.shading_position || m.shading_position_always) && scene.has_normals() &&
-        tr.has_parent_uv) {
-      p = shading_position(p, tri, scene.normals[tr.parent_prim], tr.parent_u, tr.parent_v,
-                           parent_shading_normal(tr, scene, ng), !m.shading_position_always);
+    if (shadow && (m.shading_position || m.shading_position_always)) {
+      if (scene.has_normals() && tr.has_parent_uv)
+        p = shading_position(p, tri, scene.normals[tr.parent_prim], tr.parent_u, tr.parent_v,
+                             parent_shading_normal(tr, scene, ng), !m.shading_position_always);
+      else
+        out.emission_fallback = true;  // needs vertex normals and parent_uv
     }
     if (m.offset_errbound) {
       // pbrt bounds the error of its own barycentric point; without parent_uv
@@ -100,7 +102,7 @@ EmittedRay emit_ray(const TraceRay& tr, const Scene& scene, const ReplayOptions&
       BoundedPoint bp = tr.has_parent_uv ? barycentric_point_with_error(tri, tr.parent_u, tr.parent_v)
                                          : BoundedPoint{p, {}};
       if (!tr.has_parent_uv) {
-        out.hit_point_fallback = true;
+        out.emission_fallback = true;
         bp.error = (7.0f * 5.9604645e-8f) * abs(p);
       }
       p = offset_error_bound(bp, ng, r.d);

@@ -16,7 +16,7 @@ namespace vbsim {
 struct EmittedRay {
   Ray ray;
   bool reversed = false;        ///< reverse-shadow: traced from the light back
-  bool hit_point_fallback = false;  ///< the requested hit point needed data the ray lacks
+  bool emission_fallback = false;  ///< a step needed parent data the ray lacks and was skipped
 };
 
 /// Parent sign bit of the trace spec: the given `sign`, else dot(d, Ng(parent_prim)) < 0

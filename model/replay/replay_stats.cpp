@@ -42,7 +42,7 @@ void KindStats::add(const KindStats& o) {
   rays += o.rays;
   hits += o.hits;
   for (int v = 0; v < kVerdictCount; ++v) verdicts[v] += o.verdicts[v];
-  hit_point_fallbacks += o.hit_point_fallbacks;
+  emission_fallbacks += o.emission_fallbacks;
   candidates.add(o.candidates);
   traversal.add(o.traversal);
 }
@@ -60,7 +60,7 @@ nlohmann::json ReplayStats::to_json(const nlohmann::json& config) const {
   j["rays"] = t.rays;
   j["hits"] = t.hits;
   j["verdicts"] = verdicts_json(t);
-  j["hit_point_fallbacks"] = t.hit_point_fallbacks;
+  j["emission_fallbacks"] = t.emission_fallbacks;
   nlohmann::json kinds = nlohmann::json::object();
   for (int k = 0; k < kRayKindCount; ++k) {
     const KindStats& s = by_kind[k];

@@ -20,7 +20,7 @@ struct KindStats {
   uint64_t rays = 0;
   uint64_t hits = 0;                        ///< rays that returned a hit (shadow: occluded)
   std::array<uint64_t, kVerdictCount> verdicts{};
-  uint64_t hit_point_fallbacks = 0;         ///< origin kept as given: parent data missing
+  uint64_t emission_fallbacks = 0;  ///< rays where an emission step lacked parent data
   CandidateCounters candidates;
   TraversalCounters traversal;
 

@@ -43,7 +43,7 @@ TEST_CASE("default trace statistics match the committed expectations", "[system]
     for (const auto& [kind, verdicts] : want["by_kind"].items())
       CHECK(got["by_kind"][kind]["verdicts"] == verdicts);
     for (const auto& [key, value] : want["avoidance"].items()) CHECK(got["avoidance"][key] == value);
-    CHECK(got["hit_point_fallbacks"] == want["hit_point_fallbacks"]);
+    CHECK(got["emission_fallbacks"] == want["emission_fallbacks"]);
     // The effective configuration is echoed, and the counts add up.
     CHECK(got["config"]["trace"] == default_trace());
     uint64_t sum = 0;
