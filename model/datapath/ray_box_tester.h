@@ -54,11 +54,11 @@ class RayBoxTester {
 
   /// True when the ray's interval [tmin, tmax] meets box `b`.
   bool hits(const Bounds3f& b, float tmax) const {
+    const float bound[2][3] = {{b.lo.x, b.lo.y, b.lo.z}, {b.hi.x, b.hi.y, b.hi.z}};  // [side][axis]
     float tn = tmin_, tf = INFINITY;
     for (int a = 0; a < 3; ++a) {
-      const float near = near_side_[a] ? b.hi[a] : b.lo[a], far = near_side_[a] ? b.lo[a] : b.hi[a];
-      tn = std::max(tn, (near - o_[a]) * inv_[a]);
-      tf = std::min(tf, (far - o_[a]) * inv_[a]);
+      tn = std::max(tn, (bound[near_side_[a]][a] - o_[a]) * inv_[a]);
+      tf = std::min(tf, (bound[1 - near_side_[a]][a] - o_[a]) * inv_[a]);
     }
     return tn <= std::min(tf * kWiden, tmax);
   }
