@@ -56,7 +56,7 @@ BvhStats compute_bvh_stats(const Bvh& bvh) {
 std::string format_bvh_stats(const BvhStats& s) {
   return fmt::format(
       "nodes: {}\nleaves: {}\ntriangles: {}\naverage leaf size: {:.3f} triangles\n"
-      "max leaf size: {} triangles\ndepth: {} nodes\nnode bytes: {} B\ntriangle bytes: {} B\n"
+      "max leaf size: {} triangles\ndepth: {} levels\nnode bytes: {} B\ntriangle bytes: {} B\n"
       "SAH cost: {:.3f}\n",
       s.nodes, s.leaves, s.triangles, s.average_leaf_size, s.max_leaf_size, s.depth, s.node_bytes,
       s.triangle_bytes, s.sah_cost);
