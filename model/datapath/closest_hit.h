@@ -78,8 +78,9 @@ Hit closest_hit(const Bvh& bvh, const Ray& ray, const CandidateFilter& filter,
       float t0, t1;
       const unsigned hit = box.hits(n, tmax, t0, t1);
       if (hit != 0u) {
-        // Branch-free: descend into the nearer child met (child 0 on a tie) and
-        // write the other to the stack, keeping it only when both were met.
+        // Descend into the nearer child met (child 0 on a tie) and write the
+        // other to the stack, keeping it only when both were met. Selects, not
+        // loads indexed by the test's outcome: measured faster.
         const bool first0 = hit == 1u || (hit == 3u && t0 <= t1);
         const BvhRef c0 = n.child(0), c1 = n.child(1);
         const BvhRef far = first0 ? c1 : c0;

@@ -22,6 +22,7 @@
 
 namespace vbsim {
 
+/// Slab tests of one ray (latched at construction) against the root box and node child boxes.
 class RayBoxTester {
  public:
   /// Far distances are widened by 1 + 2 gamma(3), gamma(n) = n u / (1 - n u), u = 2^-24.
