@@ -29,7 +29,7 @@ struct Workspace {
   std::vector<Candidate> candidates;
   std::vector<mpq_class> exact_t;
   size_t exact_used = 0;
-  std::vector<std::pair<uint32_t, double>> stack;  // node, lower bound of its entry t
+  std::vector<std::pair<BvhRef, double>> stack;  // subtree, lower bound of its entry t
 
   mpq_class& next_exact() {
     if (exact_used == exact_t.size()) exact_t.emplace_back();
@@ -38,54 +38,70 @@ struct Workspace {
 };
 thread_local Workspace workspace;
 
-bool box_contains(const BvhNode& n, Vec3f p) {
+bool box_contains(const Bounds3f& b, Vec3f p) {
   for (int a = 0; a < 3; ++a)
-    if (!(n.lo[a] <= p[a] && p[a] <= n.hi[a])) return false;
+    if (!(b.lo[a] <= p[a] && p[a] <= b.hi[a])) return false;
   return true;
 }
 
-bool box_contains(const BvhNode& outer, const BvhNode& inner) {
+bool box_contains(const Bounds3f& outer, const Bounds3f& inner) {
   for (int a = 0; a < 3; ++a)
     if (!(outer.lo[a] <= inner.lo[a] && inner.hi[a] <= outer.hi[a])) return false;
   return true;
 }
 
-[[noreturn]] void bad_bvh(uint32_t node, const std::string& what) {
-  throw std::invalid_argument("Oracle: BVH node " + std::to_string(node) + ": " + what);
+[[noreturn]] void bad_bvh(const std::string& where, const std::string& what) {
+  throw std::invalid_argument("Oracle: BVH " + where + ": " + what);
 }
 
+std::string node_name(uint32_t node) { return "node " + std::to_string(node); }
+
 // The traversal skips a subtree only when its box misses the ray, so it is
-// exact only if each triangle sits in one leaf inside every box above it.
+// exact only if each triangle sits in one leaf inside every box above it: the
+// root's box, and each child slot's box inside the box of the slot above it.
 void check_coverage(const Scene& scene, const Bvh& bvh) {
   if (scene.size() == 0) return;  // every answer is a miss; the BVH is not read
-  if (bvh.nodes.empty()) throw std::invalid_argument("Oracle: empty BVH for a non-empty scene");
+  if (bvh.tris.empty()) throw std::invalid_argument("Oracle: empty BVH for a non-empty scene");
   std::vector<uint8_t> node_seen(bvh.nodes.size(), 0), prim_seen(scene.triangles.size(), 0);
-  std::vector<std::pair<uint32_t, uint32_t>> todo{{0u, 0u}};  // node, parent (root: itself)
+  struct Pending {
+    BvhRef ref;
+    Bounds3f box;       // the box the traversal tests before entering `ref`
+    std::string where;  // "root" or "node i child c", for messages
+  };
+  std::vector<Pending> todo{{bvh.root, bvh.root_bounds, "root"}};
   while (!todo.empty()) {
-    const auto [i, parent] = todo.back();
+    const Pending p = todo.back();
     todo.pop_back();
-    if (i >= bvh.nodes.size()) bad_bvh(parent, "child index " + std::to_string(i) + " out of range");
-    if (node_seen[i]++) bad_bvh(i, "reached twice");
-    const BvhNode& n = bvh.nodes[i];
-    if (!box_contains(bvh.nodes[parent], n)) bad_bvh(i, "box not inside its parent's box");
-    if (!n.is_leaf()) {
-      if (n.offset <= i + 1) bad_bvh(i, "second child does not follow the first");
-      todo.push_back({i + 1, i});
-      todo.push_back({n.offset, i});
+    if (!p.ref.is_leaf()) {
+      const uint32_t i = p.ref.index;
+      if (i >= bvh.nodes.size()) bad_bvh(p.where, "node index " + std::to_string(i) + " out of range");
+      if (node_seen[i]++) bad_bvh(node_name(i), "reached twice");
+      const BvhNode& n = bvh.nodes[i];
+      for (int c = 0; c < 2; ++c) {
+        const std::string where = node_name(i) + " child " + std::to_string(c);
+        if (!box_contains(p.box, n.child_bounds(c))) bad_bvh(where, "box not inside its parent's box");
+        todo.push_back({n.child(c), n.child_bounds(c), where});
+      }
       continue;
     }
-    if (size_t(n.offset) + n.count() > bvh.tris.size()) bad_bvh(i, "triangle range out of range");
-    for (uint32_t j = n.offset; j < n.offset + n.count(); ++j) {
+    if (size_t(p.ref.index) + p.ref.count > bvh.tris.size()) bad_bvh(p.where, "triangle range out of range");
+    for (uint32_t j = p.ref.index; j < p.ref.index + p.ref.count; ++j) {
       const uint32_t prim = bvh.tris[j].prim;
-      if (prim >= scene.triangles.size()) bad_bvh(i, "prim " + std::to_string(prim) + " out of range");
-      if (prim_seen[prim]++) bad_bvh(i, "prim " + std::to_string(prim) + " in two leaves");
+      if (prim >= scene.triangles.size()) bad_bvh(p.where, "prim " + std::to_string(prim) + " out of range");
+      if (prim_seen[prim]++) bad_bvh(p.where, "prim " + std::to_string(prim) + " in two leaves");
       const Triangle& t = scene.triangles[prim];
-      if (!box_contains(n, t.v0) || !box_contains(n, t.v1) || !box_contains(n, t.v2))
-        bad_bvh(i, "box does not enclose prim " + std::to_string(prim));
+      if (!box_contains(p.box, t.v0) || !box_contains(p.box, t.v1) || !box_contains(p.box, t.v2))
+        bad_bvh(p.where, "box does not enclose prim " + std::to_string(prim));
     }
   }
   for (size_t p = 0; p < prim_seen.size(); ++p)
     if (!prim_seen[p]) throw std::invalid_argument("Oracle: BVH misses prim " + std::to_string(p));
+}
+
+// The filter's slab test on a box.
+bool filter_bounds(const FilterRay& fr, const Bounds3f& b, double t_limit, double& t_near) {
+  const float lo[3] = {b.lo.x, b.lo.y, b.lo.z}, hi[3] = {b.hi.x, b.hi.y, b.hi.z};
+  return filter_box(fr, lo, hi, t_limit, t_near);
 }
 
 // Records an exact hit t (already in ws.exact_t[slot]) as a candidate.
@@ -126,29 +142,27 @@ void test_triangle(const ExactRay& ray, const FilterRay& fr, const Triangle& tri
 void traverse(const ExactRay& ray, const FilterRay& fr, const Scene& scene, const Bvh& bvh,
               Workspace& ws, double& best_hi) {
   double tn = 0;
-  if (!filter_box(fr, bvh.nodes[0].lo, bvh.nodes[0].hi, best_hi, tn)) return;
+  if (!filter_bounds(fr, bvh.root_bounds, best_hi, tn)) return;
   ws.stack.clear();
-  ws.stack.push_back({0u, tn});
+  ws.stack.push_back({bvh.root, tn});
   while (!ws.stack.empty()) {
-    const auto [i, entry] = ws.stack.back();
+    const auto [ref, entry] = ws.stack.back();
     ws.stack.pop_back();
     if (entry > best_hi) continue;
-    const BvhNode& n = bvh.nodes[i];
-    if (n.is_leaf()) {
-      for (uint32_t j = n.offset; j < n.offset + n.count(); ++j) {
+    if (ref.is_leaf()) {
+      for (uint32_t j = ref.index; j < ref.index + ref.count; ++j) {
         const int32_t prim = static_cast<int32_t>(bvh.tris[j].prim);
         test_triangle(ray, fr, scene.triangles[static_cast<size_t>(prim)], prim, ws, best_hi);
       }
       continue;
     }
-    const uint32_t c[2] = {i + 1, n.offset};
+    const BvhNode& n = bvh.nodes[ref.index];
     double near[2];
     bool hit[2];
-    for (int k = 0; k < 2; ++k)
-      hit[k] = filter_box(fr, bvh.nodes[c[k]].lo, bvh.nodes[c[k]].hi, best_hi, near[k]);
+    for (int k = 0; k < 2; ++k) hit[k] = filter_bounds(fr, n.child_bounds(k), best_hi, near[k]);
     const int first = hit[0] && hit[1] ? (near[1] < near[0] ? 1 : 0) : (hit[0] ? 0 : 1);
-    if (hit[1 - first]) ws.stack.push_back({c[1 - first], near[1 - first]});
-    if (hit[first]) ws.stack.push_back({c[first], near[first]});
+    if (hit[1 - first]) ws.stack.push_back({n.child(1 - first), near[1 - first]});
+    if (hit[first]) ws.stack.push_back({n.child(first), near[first]});
   }
 }
 

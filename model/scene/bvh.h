@@ -1,15 +1,36 @@
-// Bvh: the project's compact BVH, built by Embree's rtcBuildBVH (SAH) and laid
-// out as the hardware model fetches it from memory.
+// Bvh: the project's compact binary BVH, built by Embree's rtcBuildBVH (SAH)
+// and laid out as a hardware BVH unit fetches it: one 64-byte node fetch gives
+// the boxes and references of BOTH children, so an interior node's two box
+// tests need no further fetch.
 //
-// Layout (little-endian, byte addresses = index * size):
-//   BvhNode     32 bytes: bounds lo[3], hi[3] (float32), then
-//               offset      interior: index of the second child (the first is this+1)
-//                           leaf:     index of the first triangle in `tris`
-//               count_axis  bits 0..15: triangle count (0 = interior node),
-//                           bits 16..17: split axis of an interior node
+// Layout (little-endian, byte address = index * size, nodes 64-byte aligned):
+//   BvhNode 64 bytes, one per INTERIOR node; leaves are no records of their own.
+//     bytes  0..47  box[3][2][2] float32: box[axis][side][child], side 0 = low
+//                   bound, 1 = high bound. In memory (SoA): lo_x[2], hi_x[2],
+//                   lo_y[2], hi_y[2], lo_z[2], hi_z[2], where lo_x[c] is child
+//                   c's low x bound; so a ray's near (or far) bounds on one axis
+//                   for both children are one 8-byte pair.
+//     bytes 48..55  ref[2]   uint32 per child: count 0 -> index in `nodes` of the
+//                            child's node; count > 0 -> index in `tris` of the
+//                            leaf's first triangle
+//     bytes 56..59  count[2] uint16 per child: 0 = interior child, 1..65535 = a
+//                            leaf of that many consecutive triangles of `tris`
+//     bytes 60..63  axis     uint32: split axis (0 x, 1 y, 2 z); child 0's box
+//                            centre is not above child 1's on it
 //   BvhTriangle 40 bytes: v0, v1, v2 (float32) and prim (scene triangle id)
-// Nodes are in depth-first order, root at index 0; triangles in leaf order.
+//
+// The root is described in Bvh like a child slot: its box `root_bounds` and its
+// reference `root` (BvhRef, same encoding as ref/count). When the whole tree is
+// one leaf (1..max_leaf_size triangles) `root` is that leaf and `nodes` is
+// empty; otherwise `root` is node 0. An empty scene has no nodes, no triangles,
+// inverted root_bounds (lo = +inf, hi = -inf) and depth 0: since its root
+// reference {0, 0} reads as "node 0", readers check `tris.empty()` first.
+//
+// Order: nodes depth-first in pre-order (a node before its children, the first
+// child's subtree before the second's), so an interior first child is the next
+// node; triangles in leaf order (the order a depth-first walk meets the leaves).
 #pragma once
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -18,17 +39,43 @@
 
 namespace vbsim {
 
-struct BvhNode {
-  float lo[3];
-  float hi[3];
-  uint32_t offset;
-  uint32_t count_axis;
+/// Reference to a subtree: an interior node or a leaf's triangle range.
+struct BvhRef {
+  uint32_t index = 0;  ///< count 0: index in Bvh::nodes; count > 0: first triangle in Bvh::tris
+  uint32_t count = 0;  ///< 0: interior node; else the leaf's number of triangles
 
-  uint32_t count() const { return count_axis & 0xffffu; }
-  uint32_t axis() const { return (count_axis >> 16) & 3u; }
-  bool is_leaf() const { return count() != 0; }
+  bool is_leaf() const { return count != 0; }
 };
-static_assert(sizeof(BvhNode) == 32, "BvhNode is 32 bytes in the hardware layout");
+
+struct alignas(64) BvhNode {
+  float box[3][2][2];  ///< box[axis][0 low | 1 high][child]
+  uint32_t ref[2];
+  uint16_t count[2];
+  uint32_t axis;
+
+  /// What child `c` (0 or 1) refers to.
+  BvhRef child(int c) const { return {ref[c], count[c]}; }
+  /// Child `c`'s box.
+  Bounds3f child_bounds(int c) const {
+    Bounds3f b;
+    b.lo = {box[0][0][c], box[1][0][c], box[2][0][c]};
+    b.hi = {box[0][1][c], box[1][1][c], box[2][1][c]};
+    return b;
+  }
+  /// Stores child `c`'s box and reference (precondition: r.count <= 65535).
+  void set_child(int c, const Bounds3f& b, BvhRef r) {
+    for (int a = 0; a < 3; ++a) {
+      box[a][0][c] = b.lo[a];
+      box[a][1][c] = b.hi[a];
+    }
+    ref[c] = r.index;
+    count[c] = static_cast<uint16_t>(r.count);
+  }
+};
+static_assert(sizeof(BvhNode) == 64 && alignof(BvhNode) == 64,
+              "BvhNode is 64 bytes, 64-byte aligned, in the hardware layout");
+static_assert(offsetof(BvhNode, ref) == 48 && offsetof(BvhNode, count) == 56 && offsetof(BvhNode, axis) == 60,
+              "BvhNode field offsets are part of the hardware layout");
 
 struct BvhTriangle {
   Triangle tri;
@@ -41,13 +88,18 @@ struct BvhBuildOptions {
 };
 
 struct Bvh {
-  std::vector<BvhNode> nodes;
+  std::vector<BvhNode> nodes;   ///< interior nodes, pre-order; node 0 is the root unless it is a leaf
   std::vector<BvhTriangle> tris;
-  int depth = 0;  ///< longest root-to-leaf path, in nodes
+  Bounds3f root_bounds;         ///< the root's box: the scene's triangles' exact bounds
+  BvhRef root;                  ///< node 0, or the leaf that holds every triangle
+  /// Levels on the longest root-to-leaf path, counting the leaf: the node fetches
+  /// along that path plus one (a root leaf: 1; an empty scene: 0). Unchanged
+  /// from the layout with one record per node, leaves included.
+  int depth = 0;
 };
 
 /// Builds the BVH of `scene` with rtcBuildBVH (SAH, high quality). Every
-/// triangle appears in exactly one leaf; an empty scene gives a single empty leaf.
+/// triangle appears in exactly one leaf; an empty scene gives no nodes and no triangles.
 Bvh build_bvh(const Scene& scene, const BvhBuildOptions& options = {});
 
 }  // namespace vbsim

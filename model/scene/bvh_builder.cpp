@@ -3,16 +3,15 @@
 // flattens it depth-first into the layout documented in bvh.h.
 //
 // Choices beyond bvh.h (contract for traversal code):
-//   - Node bounds are the exact float32 min/max of the vertices of the triangles
-//     below the node, recomputed here (never taken from, or shrunk to, anything else).
+//   - Boxes (child slots and root_bounds) are the exact float32 min/max of the
+//     vertices of the triangles below them, recomputed here (never taken from,
+//     or shrunk to, anything else).
 //   - Split axis of an interior node: the axis along which the centres of the two
-//     children's bounds differ most (ties: lowest axis). The children are ordered
-//     so that the first child's centre is not greater than the second's on that
-//     axis; a ray with d[axis] >= 0 meets the first child's side first.
-//   - An empty scene gives one node with inverted bounds (lo = +inf, hi = -inf),
-//     offset 0 and count_axis 0, and no triangles. Its count of 0 reads as
-//     "interior" in the encoding, so traversals must treat `tris.empty()` as an
-//     empty scene before reading nodes.
+//     children's boxes differ most (ties: lowest axis). The children are ordered
+//     so that child 0's centre is not greater than child 1's on that axis; a ray
+//     with d[axis] >= 0 meets child 0's side first.
+//   - Every interior node has two non-empty children: no empty slots.
+//   - An empty scene gives no nodes and no triangles (bvh.h).
 //   - No spatial splits: each triangle is in exactly one leaf.
 //   - The build runs on one Embree thread (see EmbreeDevice), so it is reproducible.
 #include <atomic>
@@ -129,30 +128,29 @@ int split_axis(const Bounds3f& a, const Bounds3f& b) {
   return best;
 }
 
-BvhNode make_node(const Bounds3f& b, uint32_t offset, uint32_t count_axis) {
-  return BvhNode{{b.lo.x, b.lo.y, b.lo.z}, {b.hi.x, b.hi.y, b.hi.z}, offset, count_axis};
-}
-
-// Appends `node`'s subtree in depth-first order; `depth` counts nodes from the root (1).
-void flatten(const BuildNode* node, int depth, const Scene& scene, Bvh& bvh) {
+// Appends `node`'s subtree (nodes in pre-order, triangles in leaf order) and
+// returns its reference; `depth` counts levels from the root (1), leaves included.
+BvhRef flatten(const BuildNode* node, int depth, const Scene& scene, Bvh& bvh) {
   bvh.depth = std::max(bvh.depth, depth);
-  const size_t index = bvh.nodes.size();
-  bvh.nodes.emplace_back();
   if (node->count != 0) {
     const auto first = static_cast<uint32_t>(bvh.tris.size());
     for (uint32_t i = 0; i < node->count; ++i)
       bvh.tris.push_back(BvhTriangle{scene.triangles[node->prims[i]], node->prims[i]});
-    bvh.nodes[index] = make_node(node->bounds, first, node->count);
-    return;
+    return BvhRef{first, node->count};
   }
+  const auto index = static_cast<uint32_t>(bvh.nodes.size());
+  bvh.nodes.emplace_back();
   const BuildNode* first = node->children[0];
   const BuildNode* second = node->children[1];
   const int axis = split_axis(first->bounds, second->bounds);
   if (centre(second->bounds, axis) < centre(first->bounds, axis)) std::swap(first, second);
-  flatten(first, depth + 1, scene, bvh);
-  const auto second_index = static_cast<uint32_t>(bvh.nodes.size());
-  flatten(second, depth + 1, scene, bvh);
-  bvh.nodes[index] = make_node(node->bounds, second_index, static_cast<uint32_t>(axis) << 16);
+  const BvhRef first_ref = flatten(first, depth + 1, scene, bvh);
+  const BvhRef second_ref = flatten(second, depth + 1, scene, bvh);
+  BvhNode& n = bvh.nodes[index];  // taken after the recursion: `nodes` may have grown
+  n.set_child(0, first->bounds, first_ref);
+  n.set_child(1, second->bounds, second_ref);
+  n.axis = static_cast<uint32_t>(axis);
+  return BvhRef{index, 0};
 }
 
 // Owns an RTCBVH (and with it every BuildNode).
@@ -171,11 +169,7 @@ Bvh build_bvh(const Scene& scene, const BvhBuildOptions& options) {
         fmt::format("BvhBuildOptions.max_leaf_size must be in 1..65535, got {}", options.max_leaf_size));
 
   Bvh bvh;
-  if (scene.triangles.empty()) {
-    bvh.nodes.push_back(make_node(Bounds3f{}, 0, 0));
-    bvh.depth = 1;
-    return bvh;
-  }
+  if (scene.triangles.empty()) return bvh;  // no nodes, no triangles, depth 0
 
   std::vector<RTCBuildPrimitive> prims(scene.triangles.size());
   for (size_t i = 0; i < prims.size(); ++i) {
@@ -214,9 +208,10 @@ Bvh build_bvh(const Scene& scene, const BvhBuildOptions& options) {
   if (context.unexpected_shape) throw SceneError("Embree rtcBuildBVH built a node without exactly 2 children");
 
   compute_bounds(root, scene);
-  bvh.nodes.reserve(2 * prims.size());
+  bvh.nodes.reserve(prims.size());
   bvh.tris.reserve(prims.size());
-  flatten(root, 1, scene, bvh);
+  bvh.root_bounds = root->bounds;
+  bvh.root = flatten(root, 1, scene, bvh);
   if (bvh.tris.size() != scene.triangles.size())
     throw SceneError(fmt::format("Embree rtcBuildBVH placed {} of {} triangles in leaves", bvh.tris.size(),
                                  scene.triangles.size()));

@@ -14,18 +14,19 @@ constexpr double kSahTraversalCost = 1.0;
 constexpr double kSahIntersectionCost = 1.0;
 
 struct BvhStats {
-  int64_t nodes = 0;            ///< all nodes, interior and leaf
-  int64_t leaves = 0;           ///< leaf nodes (an empty scene counts its single node as a leaf)
+  int64_t nodes = 0;            ///< BvhNode records: interior nodes (leaves have none)
+  int64_t leaves = 0;           ///< leaves (a root leaf counts; an empty scene has none)
   int64_t triangles = 0;        ///< entries of Bvh::tris
   double average_leaf_size = 0; ///< triangles per leaf
   int64_t max_leaf_size = 0;    ///< triangles in the largest leaf
-  int depth = 0;                ///< longest root-to-leaf path in nodes, recounted from the nodes
+  int depth = 0;                ///< levels on the longest root-to-leaf path, leaf included (Bvh::depth), recounted
   int64_t node_bytes = 0;       ///< nodes * sizeof(BvhNode)
   int64_t triangle_bytes = 0;   ///< triangles * sizeof(BvhTriangle)
   /// Expected cost of a ray that enters the root, in units of one node visit:
   /// sum over interior nodes of kSahTraversalCost * A(n) / A(root) plus sum over
   /// leaves of kSahIntersectionCost * count * A(n) / A(root), A = surface area
-  /// (double). A root of zero area weighs every node 1.
+  /// (double) of the subtree's box (its parent's child slot, or root_bounds).
+  /// A root of zero area weighs every subtree 1.
   double sah_cost = 0;
 };
 

@@ -38,84 +38,93 @@ Scene random_soup(uint32_t seed, int count) {
   return make_scene(std::move(tris));
 }
 
-bool contains(const BvhNode& n, Vec3f p) {
+bool contains(const Bounds3f& b, Vec3f p) {
   for (int a = 0; a < 3; ++a)
-    if (!(n.lo[a] <= p[a] && p[a] <= n.hi[a])) return false;
+    if (!(b.lo[a] <= p[a] && p[a] <= b.hi[a])) return false;
   return true;
 }
 
-bool contains(const BvhNode& outer, const BvhNode& inner) {
+bool contains(const Bounds3f& outer, const Bounds3f& inner) {
   for (int a = 0; a < 3; ++a)
     if (!(outer.lo[a] <= inner.lo[a] && inner.hi[a] <= outer.hi[a])) return false;
   return true;
 }
 
-// Checks every structural promise of bvh.h and bvh_builder.cpp; returns the
-// recounted depth of the subtree at `index`. `next_tri` follows leaf order.
-int check_subtree(const Bvh& bvh, uint32_t index, uint32_t& next_tri, std::vector<int>& seen, int max_leaf) {
-  REQUIRE(index < bvh.nodes.size());
-  const BvhNode& n = bvh.nodes[index];
-  if (n.is_leaf()) {
-    CHECK(n.count() <= static_cast<uint32_t>(max_leaf));
-    CHECK(n.axis() == 0);
-    CHECK(n.offset == next_tri);  // triangles are stored in leaf order
-    REQUIRE(n.offset + n.count() <= bvh.tris.size());
-    for (uint32_t i = n.offset; i < n.offset + n.count(); ++i) {
+bool same_box(const Bounds3f& a, const Bounds3f& b) { return a.lo == b.lo && a.hi == b.hi; }
+
+// Where a walk of the tree is: the next node index pre-order must give and the
+// next triangle leaf order must give.
+struct WalkState {
+  uint32_t next_node = 0;
+  uint32_t next_tri = 0;
+};
+
+// Checks every structural promise of bvh.h and bvh_builder.cpp for the subtree
+// `ref` whose box (its parent's child slot, or root_bounds) is `box`; returns
+// the recounted depth (levels, leaf included) of the subtree.
+int check_subtree(const Bvh& bvh, BvhRef ref, const Bounds3f& box, WalkState& walk, std::vector<int>& seen,
+                  int max_leaf) {
+  if (ref.is_leaf()) {
+    CHECK(ref.count <= static_cast<uint32_t>(max_leaf));
+    CHECK(ref.index == walk.next_tri);  // triangles are stored in leaf order
+    REQUIRE(ref.index + ref.count <= bvh.tris.size());
+    Bounds3f exact;
+    for (uint32_t i = ref.index; i < ref.index + ref.count; ++i) {
       const BvhTriangle& t = bvh.tris[i];
       REQUIRE(t.prim < seen.size());
       ++seen[t.prim];
-      CHECK((contains(n, t.tri.v0) && contains(n, t.tri.v1) && contains(n, t.tri.v2)));
+      CHECK((contains(box, t.tri.v0) && contains(box, t.tri.v1) && contains(box, t.tri.v2)));
+      exact.extend(t.tri.v0);
+      exact.extend(t.tri.v1);
+      exact.extend(t.tri.v2);
     }
-    next_tri += n.count();
+    CHECK(same_box(box, exact));  // tight: exactly the leaf's vertices' bounds
+    walk.next_tri += ref.count;
     return 1;
   }
-  CHECK(n.axis() <= 2);
-  const uint32_t first = index + 1, second = n.offset;
-  REQUIRE(second > first);
-  REQUIRE(second < bvh.nodes.size());
-  CHECK(contains(n, bvh.nodes[first]));
-  CHECK(contains(n, bvh.nodes[second]));
-  // Tight: the node is exactly the union of its children.
+  // Pre-order: a node right after its parent, or after its elder sibling's subtree.
+  CHECK(ref.index == walk.next_node);
+  REQUIRE(ref.index < bvh.nodes.size());
+  ++walk.next_node;
+  const BvhNode& n = bvh.nodes[ref.index];
+  CHECK(n.axis <= 2);
+  const Bounds3f first = n.child_bounds(0), second = n.child_bounds(1);
+  CHECK(contains(box, first));
+  CHECK(contains(box, second));
+  // Tight: the slot's box is exactly the union of the node's two child boxes.
   for (int a = 0; a < 3; ++a) {
-    CHECK(n.lo[a] == std::min(bvh.nodes[first].lo[a], bvh.nodes[second].lo[a]));
-    CHECK(n.hi[a] == std::max(bvh.nodes[first].hi[a], bvh.nodes[second].hi[a]));
+    CHECK(box.lo[a] == std::min(first.lo[a], second.lo[a]));
+    CHECK(box.hi[a] == std::max(first.hi[a], second.hi[a]));
   }
-  const int axis = static_cast<int>(n.axis());
-  const double c_first = double(bvh.nodes[first].lo[axis]) + bvh.nodes[first].hi[axis];
-  const double c_second = double(bvh.nodes[second].lo[axis]) + bvh.nodes[second].hi[axis];
-  CHECK(c_first <= c_second);  // first child on the low side of the split axis
-  const int depth_first = check_subtree(bvh, first, next_tri, seen, max_leaf);
-  const int depth_second = check_subtree(bvh, second, next_tri, seen, max_leaf);
+  const int axis = static_cast<int>(n.axis);
+  const double c_first = double(first.lo[axis]) + first.hi[axis];
+  const double c_second = double(second.lo[axis]) + second.hi[axis];
+  CHECK(c_first <= c_second);  // child 0 on the low side of the split axis
+  const int depth_first = check_subtree(bvh, n.child(0), first, walk, seen, max_leaf);
+  const int depth_second = check_subtree(bvh, n.child(1), second, walk, seen, max_leaf);
   return 1 + std::max(depth_first, depth_second);
 }
 
-// Counts the nodes of the subtree at `index` (to verify depth-first contiguity).
-uint32_t subtree_size(const Bvh& bvh, uint32_t index) {
-  const BvhNode& n = bvh.nodes[index];
-  if (n.is_leaf()) return 1;
-  return 1 + subtree_size(bvh, index + 1) + subtree_size(bvh, n.offset);
-}
-
 void check_structure(const Scene& scene, const Bvh& bvh, int max_leaf) {
-  REQUIRE(!bvh.nodes.empty());
   REQUIRE(bvh.tris.size() == scene.triangles.size());
+  // The root is node 0 unless the whole tree is one leaf (then there are no nodes).
+  CHECK(bvh.root.is_leaf() == bvh.nodes.empty());
+  if (!bvh.root.is_leaf()) CHECK(bvh.root.index == 0);
   std::vector<int> seen(scene.triangles.size(), 0);
-  uint32_t next_tri = 0;
-  const int depth = check_subtree(bvh, 0, next_tri, seen, max_leaf);
+  WalkState walk;
+  const int depth = check_subtree(bvh, bvh.root, bvh.root_bounds, walk, seen, max_leaf);
   CHECK(depth == bvh.depth);
-  CHECK(next_tri == bvh.tris.size());
+  CHECK(walk.next_tri == bvh.tris.size());
+  CHECK(walk.next_node == bvh.nodes.size());  // every node reached once, none spare
   CHECK(std::count(seen.begin(), seen.end(), 1) == static_cast<long>(seen.size()));
-  CHECK(subtree_size(bvh, 0) == bvh.nodes.size());
-  // Second child starts right after the first child's subtree.
-  for (uint32_t i = 0; i < bvh.nodes.size(); ++i)
-    if (!bvh.nodes[i].is_leaf()) CHECK(bvh.nodes[i].offset == i + 1 + subtree_size(bvh, i + 1));
   for (const BvhTriangle& t : bvh.tris) {
     const Triangle& s = scene.triangles[t.prim];
     CHECK((t.tri.v0 == s.v0 && t.tri.v1 == s.v1 && t.tri.v2 == s.v2));
   }
-  const BvhNode& root = bvh.nodes[0];
-  CHECK(Vec3f{root.lo[0], root.lo[1], root.lo[2]} == scene.bounds.lo);
-  CHECK(Vec3f{root.hi[0], root.hi[1], root.hi[2]} == scene.bounds.hi);
+  CHECK(bvh.root_bounds.lo == scene.bounds.lo);
+  CHECK(bvh.root_bounds.hi == scene.bounds.hi);
+  // Storage promises of the hardware layout.
+  CHECK(reinterpret_cast<uintptr_t>(bvh.nodes.data()) % 64 == 0);
 }
 
 // ---- Brute-force reference in double -------------------------------------
@@ -193,14 +202,14 @@ struct Candidate {
 };
 
 // Slab test in double against float bounds, t in [tnear, tfar].
-bool enters(const BvhNode& n, const Ray& r) {
+bool enters(const Bounds3f& b, const Ray& r) {
   double t0 = r.tnear, t1 = r.tfar;
   for (int a = 0; a < 3; ++a) {
     if (r.d[a] == 0.0) {
-      if (r.o[a] < n.lo[a] || r.o[a] > n.hi[a]) return false;
+      if (r.o[a] < b.lo[a] || r.o[a] > b.hi[a]) return false;
       continue;
     }
-    double near = (n.lo[a] - r.o[a]) / r.d[a], far = (n.hi[a] - r.o[a]) / r.d[a];
+    double near = (b.lo[a] - r.o[a]) / r.d[a], far = (b.hi[a] - r.o[a]) / r.d[a];
     if (near > far) std::swap(near, far);
     t0 = std::max(t0, near);
     t1 = std::min(t1, far);
@@ -208,16 +217,16 @@ bool enters(const BvhNode& n, const Ray& r) {
   return t0 <= t1;
 }
 
-// Simple recursive traversal: every triangle in every leaf the ray enters.
-void gather(const Bvh& bvh, uint32_t index, const Ray& r, std::vector<Candidate>& out) {
-  const BvhNode& n = bvh.nodes[index];
-  if (!enters(n, r)) return;
-  if (n.is_leaf()) {
-    for (uint32_t i = n.offset; i < n.offset + n.count(); ++i) out.push_back({bvh.tris[i].tri, bvh.tris[i].prim});
+// Simple recursive traversal: every triangle in every leaf the ray enters;
+// `box` is the box of subtree `ref`.
+void gather(const Bvh& bvh, BvhRef ref, const Bounds3f& box, const Ray& r, std::vector<Candidate>& out) {
+  if (!enters(box, r)) return;
+  if (ref.is_leaf()) {
+    for (uint32_t i = ref.index; i < ref.index + ref.count; ++i) out.push_back({bvh.tris[i].tri, bvh.tris[i].prim});
     return;
   }
-  gather(bvh, index + 1, r, out);
-  gather(bvh, n.offset, r, out);
+  const BvhNode& n = bvh.nodes[ref.index];
+  for (int c = 0; c < 2; ++c) gather(bvh, n.child(c), n.child_bounds(c), r, out);
 }
 
 // Random rays from a sphere around the scene toward random points in its box;
@@ -264,7 +273,7 @@ int cross_check(const Scene& scene, const Bvh& bvh, const EmbreeReference& embre
     hits += brute.prim >= 0;
 
     gathered.clear();
-    gather(bvh, 0, r, gathered);
+    gather(bvh, bvh.root, bvh.root_bounds, r, gathered);
     const Closest through_bvh = closest_hit(r, gathered);
     CHECK(through_bvh.prim == brute.prim);
 
@@ -308,17 +317,31 @@ TEST_CASE("random soup BVHs satisfy the layout contract", "[bvh]") {
 TEST_CASE("tiny scenes: one triangle is a root leaf, an empty scene has no triangles", "[bvh]") {
   const Scene one = make_scene({Triangle{{0, 0, 0}, {1, 0, 0}, {0, 2, 3}}});
   const Bvh single = build_bvh(one);
-  REQUIRE(single.nodes.size() == 1);
-  CHECK(single.nodes[0].count() == 1);
-  CHECK(single.nodes[0].offset == 0);
+  CHECK(single.nodes.empty());  // the root leaf is no node record
+  CHECK(single.root.is_leaf());
+  CHECK(single.root.index == 0);
+  CHECK(single.root.count == 1);
   CHECK(single.depth == 1);
   CHECK(single.tris.size() == 1);
-  CHECK(single.nodes[0].hi[2] == 3.0f);
+  CHECK(single.root_bounds.hi == Vec3f{1, 2, 3});
+  CHECK(single.root_bounds.lo == Vec3f{0, 0, 0});
+  check_structure(one, single, 4);
+
+  // Three triangles, leaves of up to 4: still one leaf, holding all three.
+  const Scene three = make_scene({Triangle{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, Triangle{{0, 0, 1}, {1, 0, 1}, {0, 1, 1}},
+                                  Triangle{{0, 0, 2}, {1, 0, 2}, {0, 1, 2}}});
+  const Bvh few = build_bvh(three, {4});
+  check_structure(three, few, 4);
+  const Bvh split = build_bvh(three, {1});  // leaves of one: two node records
+  CHECK(split.nodes.size() == 2);
+  CHECK(split.depth == 3);
+  check_structure(three, split, 1);
 
   const Bvh empty = build_bvh(make_scene({}));
-  REQUIRE(empty.nodes.size() == 1);
+  CHECK(empty.nodes.empty());
   CHECK(empty.tris.empty());
-  CHECK(empty.nodes[0].lo[0] > empty.nodes[0].hi[0]);  // inverted: no ray can enter it
+  CHECK(empty.depth == 0);
+  CHECK(empty.root_bounds.lo.x > empty.root_bounds.hi.x);  // inverted: no ray can enter it
 
   CHECK_THROWS_AS(build_bvh(one, {0}), std::invalid_argument);
   CHECK_THROWS_AS(build_bvh(one, {70000}), std::invalid_argument);
@@ -329,7 +352,9 @@ TEST_CASE("BVH builds are reproducible byte for byte", "[bvh]") {
   const Bvh a = build_bvh(soup), b = build_bvh(soup);
   REQUIRE(a.nodes.size() == b.nodes.size());
   REQUIRE(a.tris.size() == b.tris.size());
+  REQUIRE(!a.nodes.empty());
   CHECK(std::memcmp(a.nodes.data(), b.nodes.data(), a.nodes.size() * sizeof(BvhNode)) == 0);
+  CHECK((same_box(a.root_bounds, b.root_bounds) && a.root.index == b.root.index && a.root.count == b.root.count));
   CHECK(std::memcmp(a.tris.data(), b.tris.data(), a.tris.size() * sizeof(BvhTriangle)) == 0);
 }
 
@@ -367,26 +392,37 @@ TEST_CASE("bvh_stats of two separate triangles match a hand count", "[bvh]") {
   // Flat boxes [0,1]x[0,1]x{0} and [9,10]x[0,1]x{0}: area 2 each, root area 20.
   const Scene two = make_scene({Triangle{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, Triangle{{9, 0, 0}, {10, 0, 0}, {10, 1, 0}}});
   const BvhStats s = compute_bvh_stats(build_bvh(two, {1}));
-  CHECK(s.nodes == 3);
+  CHECK(s.nodes == 1);  // one record holds both leaves
   CHECK(s.leaves == 2);
   CHECK(s.triangles == 2);
   CHECK(s.average_leaf_size == 1.0);
   CHECK(s.max_leaf_size == 1);
   CHECK(s.depth == 2);
-  CHECK(s.node_bytes == 96);
+  CHECK(s.node_bytes == 64);
   CHECK(s.triangle_bytes == 80);
   CHECK(s.sah_cost == Approx(1.0 + 2.0 / 20 + 2.0 / 20));
+
+  // A root leaf: no node records, one leaf at weight 1.
+  const BvhStats one = compute_bvh_stats(build_bvh(make_scene({two.triangles[0]})));
+  CHECK(one.nodes == 0);
+  CHECK(one.node_bytes == 0);
+  CHECK(one.leaves == 1);
+  CHECK(one.depth == 1);
+  CHECK(one.max_leaf_size == 1);
+  CHECK(one.sah_cost == Approx(1.0));
+  const BvhStats none = compute_bvh_stats(build_bvh(make_scene({})));
+  CHECK((none.nodes == 0 && none.leaves == 0 && none.depth == 0 && none.triangles == 0));
 }
 
 TEST_CASE("bvh_stats of the bunny are consistent with its tree", "[bvh]") {
   const Bvh bvh = build_bvh(load_scene(kBunnyPath));
   const BvhStats s = compute_bvh_stats(bvh);
-  CHECK(s.nodes == 2 * s.leaves - 1);  // binary tree
+  CHECK(s.nodes == s.leaves - 1);  // binary tree: interior nodes = leaves - 1
   CHECK(s.triangles == 3674);
   CHECK(s.average_leaf_size * s.leaves == Approx(3674));
   CHECK(s.max_leaf_size <= 4);
   CHECK(s.depth == bvh.depth);
-  CHECK(s.node_bytes == 32 * s.nodes);
+  CHECK(s.node_bytes == 64 * s.nodes);
   CHECK(s.sah_cost > 1.0);
   CHECK(format_bvh_stats(s).find("SAH cost") != std::string::npos);
 }

@@ -231,8 +231,15 @@ TEST_CASE("the oracle rejects a BVH that does not cover the scene", "[oracle]") 
   twice.tris[1].prim = twice.tris[0].prim;
   CHECK_THROWS_WITH(Oracle(twins, twice), Catch::Contains("two leaves"));
   Bvh small_box = bvh;
-  small_box.nodes[1].lo[2] = small_box.nodes[1].hi[2] + 0.25f;
-  CHECK_THROWS_AS(Oracle(scene, small_box), std::invalid_argument);
+  small_box.nodes[0].box[2][0][1] = small_box.nodes[0].box[2][1][1] + 0.25f;  // child 1: low z above high z
+  CHECK_THROWS_WITH(Oracle(scene, small_box), Catch::Contains("node 0 child 1: box does not enclose"));
+  Bvh small_root = bvh;
+  small_root.root_bounds.hi.z = 0.5f;  // the triangle at z = 1 sticks out of the root's box
+  CHECK_THROWS_WITH(Oracle(scene, small_root), Catch::Contains("box not inside its parent's box"));
+  Bvh dangling = bvh;
+  dangling.nodes[0].count[0] = 0;  // child 0 now claims to be an interior node
+  dangling.nodes[0].ref[0] = 5;
+  CHECK_THROWS_WITH(Oracle(scene, dangling), Catch::Contains("out of range"));
 }
 
 namespace {

@@ -71,7 +71,9 @@ class MedianBvhBuilder {
     Bvh bvh;
     std::vector<uint32_t> prims(scene_.triangles.size());
     std::iota(prims.begin(), prims.end(), 0u);
-    node(bvh, prims, 0, prims.size(), 1);
+    if (prims.empty()) return bvh;
+    bvh.root_bounds = bounds(prims, 0, prims.size());
+    bvh.root = subtree(bvh, prims, 0, prims.size(), 1);
     return bvh;
   }
 
@@ -81,40 +83,41 @@ class MedianBvhBuilder {
     return (1.0f / 3.0f) * (t.v0 + t.v1 + t.v2);
   }
 
-  uint32_t node(Bvh& bvh, std::vector<uint32_t>& prims, size_t begin, size_t end, int depth) {
-    bvh.depth = std::max(bvh.depth, depth);
-    const uint32_t index = static_cast<uint32_t>(bvh.nodes.size());
-    bvh.nodes.push_back({});
-    Bounds3f box, cbox;
+  Bounds3f bounds(const std::vector<uint32_t>& prims, size_t begin, size_t end) const {
+    Bounds3f box;
     for (size_t i = begin; i < end; ++i) {
       const Triangle& t = scene_.triangles[prims[i]];
       box.extend(t.v0);
       box.extend(t.v1);
       box.extend(t.v2);
-      cbox.extend(centroid(prims[i]));
     }
-    BvhNode n{};
-    for (int a = 0; a < 3; ++a) {
-      n.lo[a] = box.lo[a];
-      n.hi[a] = box.hi[a];
-    }
+    return box;
+  }
+
+  // Appends the subtree of prims[begin, end) (nodes in pre-order) and returns its reference.
+  BvhRef subtree(Bvh& bvh, std::vector<uint32_t>& prims, size_t begin, size_t end, int depth) {
+    bvh.depth = std::max(bvh.depth, depth);
     if (end - begin <= static_cast<size_t>(leaf_size_)) {
-      n.offset = static_cast<uint32_t>(bvh.tris.size());
-      n.count_axis = static_cast<uint32_t>(end - begin);
+      const BvhRef leaf{static_cast<uint32_t>(bvh.tris.size()), static_cast<uint32_t>(end - begin)};
       for (size_t i = begin; i < end; ++i) bvh.tris.push_back({scene_.triangles[prims[i]], prims[i]});
-      bvh.nodes[index] = n;
-      return index;
+      return leaf;
     }
+    const uint32_t index = static_cast<uint32_t>(bvh.nodes.size());
+    bvh.nodes.push_back({});
+    Bounds3f cbox;
+    for (size_t i = begin; i < end; ++i) cbox.extend(centroid(prims[i]));
     const Vec3f ext = cbox.hi - cbox.lo;
     const int axis = max_dimension(ext);
     const size_t mid = (begin + end) / 2;
     std::nth_element(prims.begin() + begin, prims.begin() + mid, prims.begin() + end,
                      [&](uint32_t a, uint32_t b) { return centroid(a)[axis] < centroid(b)[axis]; });
-    node(bvh, prims, begin, mid, depth + 1);
-    n.offset = node(bvh, prims, mid, end, depth + 1);
-    n.count_axis = static_cast<uint32_t>(axis) << 16;
-    bvh.nodes[index] = n;
-    return index;
+    const BvhRef low = subtree(bvh, prims, begin, mid, depth + 1);
+    const BvhRef high = subtree(bvh, prims, mid, end, depth + 1);
+    BvhNode& n = bvh.nodes[index];
+    n.set_child(0, bounds(prims, begin, mid), low);
+    n.set_child(1, bounds(prims, mid, end), high);
+    n.axis = static_cast<uint32_t>(axis);
+    return {index, 0};
   }
 
   const Scene& scene_;

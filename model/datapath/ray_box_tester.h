@@ -1,0 +1,132 @@
+// RayBoxTester: the robust slab test (Ize 2013) of the closest-hit search, for
+// the root's box and for both child boxes of a BvhNode at once. The far
+// distance is widened by 1 + 2 gamma(3) so that float rounding never culls a box
+// the ray touches; a zero direction component is replaced by +-1e-18 (as Embree
+// does), so no slab distance is ever NaN.
+//
+// Every distance is ((bound - o) * (1 / d)) in float32, the entry the max of the
+// three near distances and tmin, the exit the min of the three far distances
+// times the widening; a box is met when entry <= min(exit, tmax). The two-child
+// test has an SSE2 form (both children in two lanes) and a scalar form; they
+// round identically, so which one runs never changes a search.
+#pragma once
+#include <algorithm>
+#include <cmath>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
+#include "datapath/ray.h"
+#include "scene/bvh.h"
+
+namespace vbsim {
+
+/// Slab tests of one ray (latched at construction) against the root box and node child boxes.
+class RayBoxTester {
+ public:
+  /// Far distances are widened by 1 + 2 gamma(3), gamma(n) = n u / (1 - n u), u = 2^-24.
+  static constexpr float kWiden = 1.0f + 2.0f * (3.0f * 5.9604645e-8f) / (1.0f - 3.0f * 5.9604645e-8f);
+
+  /// 1 / d, with |d| < 1e-18 replaced by 1e-18 of d's sign.
+  static float safe_reciprocal(float d) {
+    constexpr float tiny = 1e-18f;
+    return 1.0f / (std::fabs(d) < tiny ? std::copysign(tiny, d) : d);
+  }
+
+  /// Per-ray set-up (as a hardware box unit latches the ray: o, 1/d, tmin).
+  explicit RayBoxTester(const Ray& ray) : tmin_(ray.tmin) {
+    for (int a = 0; a < 3; ++a) {
+      o_[a] = ray.o[a];
+      inv_[a] = safe_reciprocal(ray.d[a]);
+      near_side_[a] = inv_[a] >= 0 ? 0 : 1;
+      near_pair_[a] = 4 * a + 2 * near_side_[a];
+      far_pair_[a] = 4 * a + 2 * (1 - near_side_[a]);
+    }
+#if defined(__SSE2__)
+    o_xy_ = _mm_setr_ps(o_[0], o_[0], o_[1], o_[1]);
+    inv_xy_ = _mm_setr_ps(inv_[0], inv_[0], inv_[1], inv_[1]);
+    o_z_ = _mm_set1_ps(o_[2]);
+    inv_z_ = _mm_set1_ps(inv_[2]);
+    tmin4_ = _mm_set1_ps(ray.tmin);
+    widen_ = _mm_set1_ps(kWiden);
+#endif
+  }
+
+  /// True when the ray's interval [tmin, tmax] meets box `b`.
+  bool hits(const Bounds3f& b, float tmax) const {
+    const float bound[2][3] = {{b.lo.x, b.lo.y, b.lo.z}, {b.hi.x, b.hi.y, b.hi.z}};  // [side][axis]
+    float tn = tmin_, tf = INFINITY;
+    for (int a = 0; a < 3; ++a) {
+      tn = std::max(tn, (bound[near_side_[a]][a] - o_[a]) * inv_[a]);
+      tf = std::min(tf, (bound[1 - near_side_[a]][a] - o_[a]) * inv_[a]);
+    }
+    return tn <= std::min(tf * kWiden, tmax);
+  }
+
+  /// Tests both child boxes of `n` against [tmin, tmax]: bit c of the result is
+  /// set when child c's box is met, and entry_c is where the ray enters that
+  /// box (clamped to tmin; meaningful only when bit c is set).
+  unsigned hits(const BvhNode& n, float tmax, float& entry0, float& entry1) const {
+#if defined(__SSE2__)
+    return hits_sse2(n, tmax, entry0, entry1);
+#else
+    return hits_scalar(n, tmax, entry0, entry1);
+#endif
+  }
+
+  /// The two-child test in plain float arithmetic (the reference form).
+  unsigned hits_scalar(const BvhNode& n, float tmax, float& entry0, float& entry1) const {
+    unsigned mask = 0;
+    float* const entry[2] = {&entry0, &entry1};
+    for (int c = 0; c < 2; ++c) {
+      float tn = tmin_, tf = INFINITY;
+      for (int a = 0; a < 3; ++a) {
+        tn = std::max(tn, (n.box[a][near_side_[a]][c] - o_[a]) * inv_[a]);
+        tf = std::min(tf, (n.box[a][1 - near_side_[a]][c] - o_[a]) * inv_[a]);
+      }
+      *entry[c] = tn;
+      mask |= static_cast<unsigned>(tn <= std::min(tf * kWiden, tmax)) << c;
+    }
+    return mask;
+  }
+
+#if defined(__SSE2__)
+  /// The two-child test with SSE2: lanes 0 and 1 are children 0 and 1.
+  unsigned hits_sse2(const BvhNode& n, float tmax, float& entry0, float& entry1) const {
+    const float* b = &n.box[0][0][0];
+    // The 8-byte pair of both children's bounds that starts at float `at`, into
+    // the low or the high half of a vector.
+    const auto low = [b](int at) { return _mm_load_sd(reinterpret_cast<const double*>(b + at)); };
+    const auto high = [b](__m128d v, int at) { return _mm_loadh_pd(v, reinterpret_cast<const double*>(b + at)); };
+    // Lanes: near (far) x of children 0, 1, then near (far) y of children 0, 1;
+    // and near z of children 0, 1, then far z of children 0, 1.
+    const __m128 near_xy = _mm_castpd_ps(high(low(near_pair_[0]), near_pair_[1]));
+    const __m128 far_xy = _mm_castpd_ps(high(low(far_pair_[0]), far_pair_[1]));
+    const __m128 z = _mm_castpd_ps(high(low(near_pair_[2]), far_pair_[2]));
+    const __m128 tn_xy = _mm_mul_ps(_mm_sub_ps(near_xy, o_xy_), inv_xy_);
+    const __m128 tf_xy = _mm_mul_ps(_mm_sub_ps(far_xy, o_xy_), inv_xy_);
+    const __m128 t_z = _mm_mul_ps(_mm_sub_ps(z, o_z_), inv_z_);
+    const __m128 tn = _mm_max_ps(_mm_max_ps(tn_xy, _mm_movehl_ps(tn_xy, tn_xy)), _mm_max_ps(t_z, tmin4_));
+    const __m128 tf = _mm_min_ps(_mm_min_ps(tf_xy, _mm_movehl_ps(tf_xy, tf_xy)), _mm_movehl_ps(t_z, t_z));
+    const __m128 limit = _mm_min_ps(_mm_mul_ps(tf, widen_), _mm_set1_ps(tmax));
+    entry0 = _mm_cvtss_f32(tn);
+    entry1 = _mm_cvtss_f32(_mm_shuffle_ps(tn, tn, 1));
+    return static_cast<unsigned>(_mm_movemask_ps(_mm_cmple_ps(tn, limit))) & 3u;
+  }
+#endif
+
+ private:
+  float tmin_;
+  float o_[3];
+  float inv_[3];
+  int near_side_[3];  ///< per axis: 0 (low bound) when the reciprocal is >= 0, else 1
+  int near_pair_[3];  ///< per axis: float offset in BvhNode::box of both children's near bounds
+  int far_pair_[3];   ///< ... and of their far bounds
+#if defined(__SSE2__)
+  __m128 o_xy_, inv_xy_, o_z_, inv_z_;  ///< lanes as hits_sse2 lays them out
+  __m128 tmin4_, widen_;                ///< the ray's tmin and kWiden in every lane
+#endif
+};
+
+}  // namespace vbsim
