@@ -37,10 +37,12 @@ RayOutcome FunctionalReplayer::replay(const TraceRay& tr) {
   ks.emission_fallbacks += er.emission_fallback;
   if (tr.has_expect) {
     out.scored = true;
-    const bool need_exact = out.answer != tr.expect_prim && tr.kind != RayKind::Shadow && out.answer >= 0;
-    ExactRay intended;
-    if (need_exact) intended = intended_ray(tr, scene_, &parents_);
-    out.verdict = judge(tr, out.answer, scene_, intended);
+    if (verdict_needs_exact(tr, out.answer)) {  // rational numbers only when needed
+      const ExactRay intended = intended_ray(tr, scene_, &parents_);
+      out.verdict = judge(tr, out.answer, scene_, &intended);
+    } else {
+      out.verdict = judge(tr, out.answer, scene_, nullptr);
+    }
   }
   ++ks.verdicts[static_cast<int>(out.verdict)];
   if (track_parents_) parents_[tr.id] = {tr.o, tr.d};

@@ -14,7 +14,11 @@ bool is_self_hit_prim(const TraceRay& tr, int32_t prim, const Scene& scene) {
   return shares_vertex(scene.triangles[prim], scene.triangles[tr.parent_prim]);
 }
 
-Verdict judge(const TraceRay& tr, int32_t answer, const Scene& scene, const ExactRay& intended) {
+bool verdict_needs_exact(const TraceRay& tr, int32_t answer) {
+  return tr.kind != RayKind::Shadow && answer >= 0 && answer != tr.expect_prim;
+}
+
+Verdict judge(const TraceRay& tr, int32_t answer, const Scene& scene, const ExactRay* intended) {
   const int32_t expected = tr.expect_prim;
   const auto wrong_hit = [&] {
     return is_self_hit_prim(tr, answer, scene) ? Verdict::SelfHit : Verdict::FalseHit;
@@ -26,9 +30,9 @@ Verdict judge(const TraceRay& tr, int32_t answer, const Scene& scene, const Exac
   }
   if (answer == expected) return Verdict::Correct;
   if (answer < 0) return Verdict::Missed;
-  const ExactHit got = exact_intersect(intended, scene.triangles[answer]);
+  const ExactHit got = exact_intersect(*intended, scene.triangles[answer]);
   if (!got.hit || expected < 0) return wrong_hit();
-  const ExactHit want = exact_intersect(intended, scene.triangles[expected]);
+  const ExactHit want = exact_intersect(*intended, scene.triangles[expected]);
   if (!want.hit) return Verdict::Unscored;  // the expectation contradicts the exact test
   if (got.t == want.t) return Verdict::Correct;  // tied with the exact answer
   return got.t < want.t ? wrong_hit() : Verdict::Missed;

@@ -15,13 +15,17 @@ enum class Verdict : uint8_t { Correct = 0, SelfHit = 1, FalseHit = 2, Missed = 
 constexpr int kVerdictCount = 5;
 const char* verdict_name(Verdict v);  ///< "correct", "self_hit", ...
 
+/// True when judging `answer_prim` needs the exact intended ray: a non-shadow
+/// ray that hit something other than the expected triangle.
+bool verdict_needs_exact(const TraceRay& tr, int32_t answer_prim);
+
 /// Verdict for a ray whose method answered `answer_prim` (-1: miss; for shadow
-/// rays: any triangle >= 0 means "occluded"). Precondition: tr.has_expect.
-/// `intended` is the ray's intended ray (read only when the answer is not the
-/// expected triangle). Unscored when `expect` names a triangle the intended ray
-/// does not meet (an inconsistent trace).
+/// rays: any triangle >= 0 means "occluded"). Precondition: tr.has_expect, and
+/// `intended` (the ray's intended ray) is not null when verdict_needs_exact().
+/// Unscored when `expect` names a triangle the intended ray does not meet (an
+/// inconsistent trace).
 Verdict judge(const TraceRay& tr, int32_t answer_prim, const Scene& scene,
-              const ExactRay& intended);
+              const ExactRay* intended);
 
 /// True when a wrong nearer hit on `prim` counts as a self hit: prim is the
 /// parent triangle or shares a vertex position with it.
