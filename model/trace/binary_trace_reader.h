@@ -3,10 +3,9 @@
 // validating every ray with the same rules as the text reader.
 #pragma once
 #include <cstdint>
-#include <fstream>
 #include <string>
-#include <vector>
 
+#include "trace/record_file_reader.h"
 #include "trace/trace_source.h"
 #include "trace/trace_validation.h"
 
@@ -28,22 +27,13 @@ class BinaryTraceReader final : public TraceSource {
                                const std::string& message) const override;
 
   /// Number of records in the file (from its size), or -1 when not known.
-  int64_t record_count() const { return record_count_; }
+  int64_t record_count() const { return records_.record_count(); }
 
  private:
-  /// Refills the buffer; false when no complete record is left.
-  bool fill();
-
   std::string path_;
-  std::ifstream in_;
   TraceHeader header_;
   TraceRayValidator validator_;
-  std::vector<uint8_t> buffer_;
-  std::size_t pos_ = 0;            ///< next unread byte in buffer_
-  std::size_t end_ = 0;            ///< end of the complete records in buffer_
-  std::size_t trailing_bytes_ = 0; ///< bytes of a partial record met at end of file
-  int64_t next_record_ = 0;        ///< index of the record next() reads next
-  int64_t record_count_ = -1;
+  RecordFileReader records_;  ///< the 96-byte records after the header
 };
 
 }  // namespace vbsim

@@ -5,10 +5,10 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
-#include <fstream>
 #include <string>
-#include <vector>
 
+#include "trace/record_file_reader.h"
+#include "trace/record_file_writer.h"
 #include "trace/trace_source.h"
 #include "trace/trace_validation.h"
 
@@ -36,21 +36,13 @@ class RtcoreRayReader final : public TraceSource {
                                const std::string& message) const override;
 
   /// Number of records in the file (from its size), or -1 when not known.
-  int64_t record_count() const { return record_count_; }
+  int64_t record_count() const { return records_.record_count(); }
 
  private:
-  bool fill();
-
   std::string path_;
-  std::ifstream in_;
   TraceHeader header_;
   int32_t triangle_count_ = -1;
-  std::vector<uint8_t> buffer_;
-  std::size_t pos_ = 0;
-  std::size_t end_ = 0;
-  std::size_t trailing_bytes_ = 0;
-  int64_t next_record_ = 0;
-  int64_t record_count_ = -1;
+  RecordFileReader records_;
 };
 
 /// Writes rays in the rtcore-systemc format. Lossy by nature: it keeps o, d
@@ -60,21 +52,15 @@ class RtcoreRayWriter final : public TraceSink {
  public:
   /// Creates (or truncates) `path`. Throws TraceError.
   explicit RtcoreRayWriter(std::string path);
-  ~RtcoreRayWriter() override;
 
+  /// Appends o, d and tmax; errors name the record index and field.
   void write(const TraceRay& ray) override;
-  void close() override;
+  void close() override { records_.close(); }
   const std::string& path() const override { return path_; }
 
  private:
-  void flush_buffer();
-
   std::string path_;
-  std::ofstream out_;
-  std::vector<uint8_t> buffer_;
-  std::size_t used_ = 0;
-  int64_t records_ = 0;
-  bool closed_ = false;
+  RecordFileWriter records_;
 };
 
 }  // namespace vbsim
