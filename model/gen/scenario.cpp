@@ -1,0 +1,100 @@
+#include "gen/scenario.h"
+
+#include <fmt/format.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <stdexcept>
+
+#include "exact/expected_answers.h"
+#include "gen/paths_scenario.h"
+#include "scene/bvh.h"
+#include "scene/ply_scene_writer.h"
+#include "trace/trace_file.h"
+#include "trace/trace_header_json.h"
+
+namespace vbsim {
+
+namespace fs = std::filesystem;
+
+const std::string* ScenarioSettings::find(const std::string& key) const {
+  read_.insert(key);
+  const auto it = values_.find(key);
+  return it == values_.end() ? nullptr : &it->second;
+}
+
+double ScenarioSettings::number(const std::string& key, double fallback) const {
+  const std::string* v = find(key);
+  if (!v) return fallback;
+  char* end = nullptr;
+  errno = 0;
+  const double d = std::strtod(v->c_str(), &end);
+  if (v->empty() || *end != '\0' || errno != 0 || !std::isfinite(d))
+    throw std::runtime_error(fmt::format("option '--set {}={}': not a finite number", key, *v));
+  return d;
+}
+
+int64_t ScenarioSettings::integer(const std::string& key, int64_t fallback) const {
+  const std::string* v = find(key);
+  if (!v) return fallback;
+  char* end = nullptr;
+  errno = 0;
+  const long long i = std::strtoll(v->c_str(), &end, 10);
+  if (v->empty() || *end != '\0' || errno != 0)
+    throw std::runtime_error(fmt::format("option '--set {}={}': not an integer", key, *v));
+  return i;
+}
+
+std::string ScenarioSettings::text(const std::string& key, const std::string& fallback) const {
+  const std::string* v = find(key);
+  return v ? *v : fallback;
+}
+
+void ScenarioSettings::check_all_read(const std::string& scenario) const {
+  for (const auto& [key, value] : values_)
+    if (!read_.count(key))
+      throw std::runtime_error(fmt::format("option '--set {}': scenario '{}' has no such setting", key, scenario));
+}
+
+const std::vector<Scenario>& scenarios() {
+  static const std::vector<Scenario> all = {
+      {"paths", "multi-bounce camera paths over a mesh (set scene=FILE, depth=N, ior=X)", generate_paths_scenario},
+  };
+  return all;
+}
+
+const Scenario* find_scenario(const std::string& name) {
+  for (const Scenario& s : scenarios())
+    if (name == s.name) return &s;
+  return nullptr;
+}
+
+std::string write_scenario_case(const ScenarioCase& c, const std::string& dir, const std::string& generator) {
+  fs::create_directories(dir);
+  const std::string trace_path = (fs::path(dir) / (c.name + ".jsonl")).string();
+  std::string scene_path = c.scene_file;
+  if (scene_path.empty()) {
+    scene_path = (fs::path(dir) / (c.name + ".ply")).string();
+    write_ply_scene(scene_path, c.triangles, c.normals);
+  }
+  // The oracle sees the scene exactly as a replay will load it.
+  const Scene scene = load_scene(scene_path, c.transform);
+  const Bvh bvh = build_bvh(scene);
+  std::vector<TraceRay> rays = c.rays;
+  fill_expect(rays, scene, bvh);
+
+  TraceHeader h;
+  h.scene = scene_relative_to(scene_path, trace_path);
+  h.light = c.light;
+  h.transform = c.transform;
+  h.generator = generator;
+  h.description = c.description;
+  auto sink = create_trace_writer(trace_path, h);
+  for (const TraceRay& r : rays) sink->write(r);
+  sink->close();
+  return trace_path;
+}
+
+}  // namespace vbsim

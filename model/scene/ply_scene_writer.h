@@ -1,0 +1,25 @@
+// Binary PLY scene writer: the form vbsim's generators write scenes in, because
+// float32 values round-trip through it bit for bit (a decimal OBJ does not:
+// assimp's OBJ reader misrounds some decimals, docs/scene.md).
+//
+// Layout: binary_little_endian 1.0; one `vertex` element per triangle corner
+// (float x y z, and float nx ny nz when normals are given), three per triangle
+// in triangle order; one `face` element per triangle (uchar count = 3, int
+// indices 3k, 3k+1, 3k+2). Loading it gives triangle k = the k-th triangle
+// written, with the same vertices and normals.
+#pragma once
+#include <array>
+#include <string>
+#include <vector>
+
+#include "datapath/triangle.h"
+
+namespace vbsim {
+
+/// Writes `triangles` (and per-corner `normals`, empty or one per triangle) to
+/// `path`. Throws SceneError naming the file when it cannot be written or the
+/// normals do not match the triangles.
+void write_ply_scene(const std::string& path, const std::vector<Triangle>& triangles,
+                     const std::vector<std::array<Vec3f, 3>>& normals = {});
+
+}  // namespace vbsim
