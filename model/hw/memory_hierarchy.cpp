@@ -95,7 +95,6 @@ nlohmann::json MemoryHierarchy::stats() const {
 
   const DramCounters& d = dram_.counters();
   const uint64_t span = reads_ ? last_ready_ - first_now_ : 0;
-  const double busy = static_cast<double>(d.busy_ticks) / DramChannel::kTicksPerCycle;
   const double bytes_per_cycle = span ? static_cast<double>(d.bytes) / static_cast<double>(span) : 0.0;
   return {
       {"model", "hierarchy"},
@@ -108,7 +107,7 @@ nlohmann::json MemoryHierarchy::stats() const {
       {"dram",
        {{"reads", d.reads},
         {"bytes", d.bytes},
-        {"busy_cycles", busy},
+        {"busy_cycles", dram_.busy_cycles()},
         {"bytes_per_cycle", bytes_per_cycle},
         {"bandwidth_use", bytes_per_cycle / config_.dram_bytes_per_cycle}}},
       {"stall_cycles",
