@@ -92,6 +92,18 @@ TEST_CASE("Memory hierarchy merges reads of a line in flight and shows it from i
   CHECK(s["dram"]["reads"] == 1);
 }
 
+TEST_CASE("Memory hierarchy L2 merges a miss arriving just before the fill", "[memory][hierarchy]") {
+  auto mem = make_memory(small_config(), 2);
+  CHECK(mem->read(0, 0, 64, 0) == 112);
+  CHECK(mem->read(1, 0, 64, 105) == 112);  // reaches L2 at 107, five cycles before the fill
+  CHECK(mem->read(1, 0, 64, 110) == 112);  // core 1's own miss is in flight now
+  CHECK(mem->read(1, 64 * 4, 64, 110) == 222);  // another line, L2 miss: 110 + 112
+  CHECK(mem->read(0, 0, 64, 112) == 114);
+  const auto s = mem->stats();
+  CHECK(s["l2"]["merges"] == 1);
+  CHECK(s["l2"]["hits"] == 0);
+}
+
 TEST_CASE("Memory hierarchy read spanning two lines is ready with its last line", "[memory][hierarchy]") {
   auto mem = make_memory(small_config(), 1);
   // Bytes 60..67: lines 0 and 1, both to DRAM at cycle 12; line 1 waits 4 cycles for the channel.
