@@ -6,14 +6,13 @@ LruCache::LruCache(uint32_t sets, uint32_t ways)
     : sets_(sets),
       ways_(ways),
       set_mask_(sets > 1 && (sets & (sets - 1)) == 0 ? sets - 1 : 0),
-      tags_(static_cast<size_t>(sets) * ways, kNoLine),
-      stamps_(static_cast<size_t>(sets) * ways, 0) {}
+      ways_of_sets_(static_cast<size_t>(sets) * ways) {}
 
 bool LruCache::touch(uint64_t line) {
   const size_t base = static_cast<size_t>(set_of(line)) * ways_;
   for (size_t w = base; w < base + ways_; ++w)
-    if (tags_[w] == line) {
-      stamps_[w] = ++clock_;
+    if (ways_of_sets_[w].line == line) {
+      ways_of_sets_[w].stamp = ++clock_;
       return true;
     }
   return false;
@@ -22,23 +21,23 @@ bool LruCache::touch(uint64_t line) {
 bool LruCache::contains(uint64_t line) const {
   const size_t base = static_cast<size_t>(set_of(line)) * ways_;
   for (size_t w = base; w < base + ways_; ++w)
-    if (tags_[w] == line) return true;
+    if (ways_of_sets_[w].line == line) return true;
   return false;
 }
 
 uint64_t LruCache::install(uint64_t line) {
   const size_t base = static_cast<size_t>(set_of(line)) * ways_;
-  size_t victim = base;
-  for (size_t w = base; w < base + ways_; ++w) {
-    if (tags_[w] == kNoLine) {
+  Way* victim = &ways_of_sets_[base];
+  for (Way* w = victim; w != &ways_of_sets_[base] + ways_; ++w) {
+    if (w->line == kNoLine) {
       victim = w;
       break;
     }
-    if (stamps_[w] < stamps_[victim]) victim = w;
+    if (w->stamp < victim->stamp) victim = w;
   }
-  const uint64_t replaced = tags_[victim];
-  tags_[victim] = line;
-  stamps_[victim] = ++clock_;
+  const uint64_t replaced = victim->line;
+  victim->line = line;
+  victim->stamp = ++clock_;
   return replaced;
 }
 

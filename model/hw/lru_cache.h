@@ -3,7 +3,7 @@
 // and miss limits live in the memory hierarchy around it.
 //
 // Lines are numbered by `addr / line_bytes`; a line lives in set
-// `line % sets`. Storage is flat: one tag and one age stamp per way, no
+// `line % sets`. Storage is flat: one tag and one age stamp per way, a set's ways adjacent, no
 // allocation after construction.
 #pragma once
 #include <cstddef>
@@ -39,8 +39,11 @@ class LruCache {
   uint32_t sets_, ways_;
   uint64_t set_mask_;            // sets - 1 when sets is a power of two > 1, else 0
   uint64_t clock_ = 0;           // touch counter: a larger stamp is more recent
-  std::vector<uint64_t> tags_;   // sets * ways, kNoLine when empty
-  std::vector<uint64_t> stamps_; // last touch of each way
+  struct Way {
+    uint64_t line = kNoLine;  // kNoLine when empty
+    uint64_t stamp = 0;       // last touch
+  };
+  std::vector<Way> ways_of_sets_;  // sets * ways, a set's ways side by side
 };
 
 }  // namespace vbsim::hw
