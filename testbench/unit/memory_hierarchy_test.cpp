@@ -283,7 +283,13 @@ TEST_CASE("Memory config errors name the field", "[memory][config]") {
     REQUIRE_THROWS_AS(make_memory(m, 2), std::invalid_argument);
     REQUIRE_THROWS_WITH(make_memory(m, 2), StartsWith(c.prefix));
   }
+  MemoryConfig too_many_ways;
+  too_many_ways.l1.ways = 512;
+  CHECK_THROWS_WITH(make_memory(too_many_ways, 2),
+                    "memory.l1.ways: 512 ways of 64-byte lines do not fit in 16384 bytes");
+  CHECK_THROWS_AS(make_memory(MemoryConfig{}, 0), std::invalid_argument);
   CHECK_NOTHROW(make_memory(MemoryConfig{}, 2));  // the defaults are valid
+  CHECK_THROWS_AS(make_memory(MemoryConfig{}, 2)->read(2, 0, 64, 0), std::out_of_range);
   MemoryConfig three_sets;
   three_sets.l2 = {3 * 8 * 64, 8, 64, 14, 32};  // sets need not be a power of two
   CHECK_NOTHROW(make_memory(three_sets, 1));
