@@ -1,5 +1,7 @@
 // The binary PLY scene writer round-trips float32 geometry through assimp bit
 // for bit, in triangle order, with normals.
+#include <unistd.h>
+
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -35,7 +37,7 @@ TEST_CASE("a binary PLY scene loads back bit for bit, in triangle order", "[scen
   }
   tris.push_back(Triangle{{1.1f, 2.2f, 3.3f}, {1.1f, 2.2f, 3.3f}, {1.1f, 2.2f, 3.3f}});  // degenerate: kept
   normals.push_back({Vec3f{0, 0, 1}, Vec3f{0, 0, 1}, Vec3f{0, 0, 1}});
-  const auto path = (std::filesystem::temp_directory_path() / "vbsim_ply_roundtrip.ply").string();
+  const auto path = (std::filesystem::temp_directory_path() / ("vbsim_ply_roundtrip_" + std::to_string(::getpid()) + ".ply")).string();
   write_ply_scene(path, tris, normals);
   const Scene scene = load_scene(path);
   REQUIRE(scene.size() == static_cast<int32_t>(tris.size()));
@@ -50,7 +52,7 @@ TEST_CASE("a binary PLY scene loads back bit for bit, in triangle order", "[scen
 }
 
 TEST_CASE("a binary PLY scene without normals loads without normals", "[scene][ply]") {
-  const auto path = (std::filesystem::temp_directory_path() / "vbsim_ply_plain.ply").string();
+  const auto path = (std::filesystem::temp_directory_path() / ("vbsim_ply_plain_" + std::to_string(::getpid()) + ".ply")).string();
   write_ply_scene(path, {Triangle{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}});
   const Scene scene = load_scene(path);
   CHECK(scene.size() == 1);
