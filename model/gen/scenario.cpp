@@ -9,7 +9,9 @@
 #include <stdexcept>
 
 #include "exact/expected_answers.h"
+#include "gen/grazing_scenario.h"
 #include "gen/paths_scenario.h"
+#include "gen/random_triangles_scenario.h"
 #include "scene/bvh.h"
 #include "scene/ply_scene_writer.h"
 #include "trace/trace_file.h"
@@ -61,6 +63,8 @@ void ScenarioSettings::check_all_read(const std::string& scenario) const {
 const std::vector<Scenario>& scenarios() {
   static const std::vector<Scenario> all = {
       {"paths", "multi-bounce camera paths over a mesh (set scene=FILE, depth=N, ior=X)", generate_paths_scenario},
+      {"random-triangles", "isolated random triangles, Ray Tracing Gems Figure 6-7 or pbrt-v4 Reintersect (set protocol=rtg|pbrt)", generate_random_triangles_scenario},
+      {"grazing", "children leaving a tessellated plane, cylinder or bowl at 1e-6 rad to 10 degrees", generate_grazing_scenario},
   };
   return all;
 }
