@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "gen/grazing_children.h"
 #include "gen/scenario_trace_builder.h"
 #include "gen/seeded_random.h"
 #include "gen/surface_patch.h"
@@ -41,15 +42,7 @@ ScenarioCase grazing_case(const std::string& surface, const GrazingParams& p, in
                                                        rng.uniform(-0.5, 0.5) * f.e2);
     const Vec3f o = to_vec3f(camera);
     const SpawnPoint s = b.shoot(o, to_vec3f(target) - o);
-    if (!s.hit()) continue;
-    DVec3 n = unit_normal(b.scene().triangles[s.prim]);
-    if (ddot(n, to_dvec(s.incoming)) > 0) n = -1.0 * n;  // the side the camera ray came from
-    const DVec3 t1 = any_perpendicular(n), t2 = dcross(n, t1);
-    for (double angle : angles) {
-      const double phi = rng.uniform(0, 2 * M_PI);
-      const DVec3 tangent = std::cos(phi) * t1 + std::sin(phi) * t2;
-      b.child(s, RayKind::Diffuse, to_vec3f(std::cos(angle) * tangent + std::sin(angle) * n));
-    }
+    if (s.hit()) add_grazing_children(b, s, angles, rng);
   }
   return b.take_case(
       fmt::format("grazing-{}", surface),
