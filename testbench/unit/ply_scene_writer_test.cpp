@@ -64,3 +64,22 @@ TEST_CASE("the PLY writer names the file it cannot write", "[scene][ply]") {
   CHECK_THROWS_WITH(write_ply_scene("/nonexistent-dir/x.ply", {Triangle{}}), Catch::Contains("/nonexistent-dir/x.ply"));
   CHECK_THROWS_WITH(write_ply_scene("/tmp/x.ply", {Triangle{}}, {{}, {}}), Catch::Contains("normal triples"));
 }
+
+TEST_CASE("a binary PLY scene whose first data byte is white space loads back bit for bit", "[scene][ply]") {
+  // The first vertex's x is written first, low byte first: 0x0a (a line feed)
+  // and the other white-space bytes a reader might skip after end_header.
+  for (const uint32_t low_byte : {0x0au, 0x20u, 0x0du, 0x09u, 0x0bu, 0x0cu, 0x00u}) {
+    const uint32_t bits = 0x3f800000u | low_byte;  // 1.0f with the low mantissa byte set
+    float x;
+    std::memcpy(&x, &bits, sizeof x);
+    const Triangle tri{{x, 2.0f, 3.0f}, {4.0f, -5.0f, 6.0f}, {-7.0f, 8.0f, 9.5f}};
+    const auto path = (std::filesystem::temp_directory_path() / "vbsim_ply_first_byte.ply").string();
+    write_ply_scene(path, {tri});
+    const Scene scene = load_scene(path);
+    INFO("first data byte " << low_byte);
+    REQUIRE(scene.size() == 1);
+    CHECK(same_bits(scene.triangles[0].v0, tri.v0));
+    CHECK(same_bits(scene.triangles[0].v1, tri.v1));
+    CHECK(same_bits(scene.triangles[0].v2, tri.v2));
+  }
+}
