@@ -10,6 +10,7 @@
 
 #include "exact/expected_answers.h"
 #include "gen/paths_scenario.h"
+#include "gen/terminator_scenario.h"
 #include "scene/bvh.h"
 #include "scene/ply_scene_writer.h"
 #include "trace/trace_file.h"
@@ -61,6 +62,7 @@ void ScenarioSettings::check_all_read(const std::string& scenario) const {
 const std::vector<Scenario>& scenarios() {
   static const std::vector<Scenario> all = {
       {"paths", "multi-bounce camera paths over a mesh (set scene=FILE, depth=N, ior=X)", generate_paths_scenario},
+      {"terminator", "shadow rays from low-poly spheres with vertex normals near the terminator (set segments=LIST, band=F, hitpoint=ray|barycentric|both)", generate_terminator_scenario},
   };
   return all;
 }
