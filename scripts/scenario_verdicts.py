@@ -7,7 +7,7 @@ a Markdown table: per method and scenario, self_hit / missed / false_hit
 summed over all rays of all cases.
 
 usage: scripts/scenario_verdicts.py [--vbsim build/vbsim] [--rays N] [--seed S]
-                                    [--per-case] SCENARIO...
+                                    [--per-case] [--set key=value ...] SCENARIO...
 """
 import argparse
 import glob
@@ -34,13 +34,15 @@ def main():
     ap.add_argument("--rays", type=int, default=200)
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--per-case", action="store_true", help="one column per case instead of per scenario")
+    ap.add_argument("--set", action="append", default=[], help="scenario setting key=value (repeatable)")
     ap.add_argument("scenarios", nargs="+")
     a = ap.parse_args()
     columns = []  # (label, [traces])
     with tempfile.TemporaryDirectory() as tmp:
         for name in a.scenarios:
             out = os.path.join(tmp, name)
-            subprocess.run([a.vbsim, "gen", name, "--rays", str(a.rays), "--seed", str(a.seed), "-o", out],
+            subprocess.run([a.vbsim, "gen", name, "--rays", str(a.rays), "--seed", str(a.seed), "-o", out]
+                           + [x for kv in a.set for x in ("--set", kv)],
                            check=True, stdout=subprocess.DEVNULL)
             traces = sorted(glob.glob(os.path.join(out, "*.jsonl")))
             if a.per_case:
