@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "exact/expected_answers.h"
+#include "gen/coplanar_scenario.h"
 #include "gen/far_instance_scenario.h"
 #include "gen/layers_scenario.h"
 #include "gen/paths_scenario.h"
@@ -66,6 +67,7 @@ const std::vector<Scenario>& scenarios() {
   static const std::vector<Scenario> all = {
       {"paths", "multi-bounce camera paths over a mesh (set scene=FILE, depth=N, ior=X, hitpoint=ray|barycentric|both)", generate_paths_scenario},
       {"layers", "surfaces closer than an offset: parallel squares, nested spheres, a sphere on a plane (set separation=LIST, offset=X, z=X, shell=X, segments=N, ior=X, hitpoint=...)", generate_layers_scenario},
+      {"coplanar", "duplicated, reversed and overlapping coplanar triangles: ties and in-plane rays (set z=X, hitpoint=...)", generate_coplanar_scenario},
       {"far-instance", "paths over a mesh translated 2^k away by the header's float32 transform (set k=LIST, scene=FILE, depth=N, ior=X, hitpoint=...)", generate_far_instance_scenario},
       {"refraction", "closed glass sphere and box: refraction and total-internal-reflection paths inside (set objects=sphere,box, ior=X, bounces=N, segments=N, hitpoint=...)", generate_refraction_scenario},
       {"terminator", "shadow rays from low-poly spheres with vertex normals near the terminator (set segments=LIST, band=F, hitpoint=ray|barycentric|both)", generate_terminator_scenario},
