@@ -4,6 +4,7 @@
 // verdicts, per ray kind.
 #pragma once
 #include <catch2/catch.hpp>
+#include <unistd.h>
 
 #include <filesystem>
 #include <map>
@@ -16,7 +17,8 @@
 
 namespace vbsim::test {
 
-/// Writes scenario `name` with `settings` into a fresh scratch directory and
+/// Writes scenario `name` with `settings` into a fresh scratch directory (of
+/// this process) and
 /// returns the cases (with the rays as generated) and their trace paths.
 struct GeneratedScenario {
   std::vector<ScenarioCase> cases;
@@ -31,7 +33,9 @@ inline GeneratedScenario generate_scenario(const std::string& name, int64_t rays
   GeneratedScenario g;
   g.cases = scenario->generate(s);
   s.check_all_read(name);
-  const auto dir = std::filesystem::temp_directory_path() / ("vbsim_scenario_" + name);
+  // One directory per process: ctest runs test cases in parallel processes.
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("vbsim_scenario_" + name + "_" + std::to_string(::getpid()));
   std::filesystem::remove_all(dir);
   for (const ScenarioCase& c : g.cases) g.traces.push_back(write_scenario_case(c, dir.string(), "test"));
   return g;
