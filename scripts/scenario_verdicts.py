@@ -1,55 +1,69 @@
 #!/usr/bin/env python3
-"""Replays every trace of generated scenario folders with each method and prints a
-Markdown table of summed verdicts (rays, self_hit, missed, false_hit) per folder
-and method: the verdict table of docs/scenarios.md.
+"""Verdict table of self-intersection methods on generated scenarios.
 
-usage: scripts/scenario_verdicts.py [--vbsim BUILD/vbsim] [--methods a,b,...] DIR...
+Generates each scenario with its default settings (`vbsim gen NAME -o DIR`),
+replays every trace of it with each method (`vbsim replay --stats`) and prints
+a Markdown table: per method and scenario, self_hit / missed / false_hit
+summed over all rays of all cases.
+
+usage: scripts/scenario_verdicts.py [--vbsim build/vbsim] [--rays N] [--seed S]
+                                    [--per-case] [--set key=value ...] SCENARIO...
 """
 import argparse
+import glob
 import json
 import os
 import subprocess
-import sys
 import tempfile
 
-DEFAULT_METHODS = "none,tmin,primid,offset-normal,offset-direction,offset-adaptive,offset-errbound,validity-bit,offset-adaptive+primid"
+METHODS = ["none", "tmin", "primid", "offset-normal", "offset-direction", "offset-adaptive",
+           "offset-errbound", "offset-adaptive+primid", "validity-bit", "sign-only",
+           "shading-position"]
 
 
-def replay_dir(vbsim, folder, method):
-    totals = {"rays": 0, "self_hit": 0, "missed": 0, "false_hit": 0}
-    with tempfile.TemporaryDirectory() as tmp:
-        stats = os.path.join(tmp, "stats.json")
-        for name in sorted(os.listdir(folder)):
-            if not name.endswith(".jsonl"):
-                continue
-            subprocess.run([vbsim, "replay", os.path.join(folder, name), "-m", method, "-q", "--stats", stats],
-                           check=True)
-            with open(stats) as f:
-                s = json.load(f)
-            totals["rays"] += s["rays"]
-            for k in ("self_hit", "missed", "false_hit"):
-                totals[k] += s["verdicts"][k]
-    return totals
+def replay(vbsim, trace, method, stats):
+    subprocess.run([vbsim, "replay", trace, "-m", method, "--stats", stats, "-q"], check=True)
+    with open(stats) as f:
+        v = json.load(f)["verdicts"]
+    return v["self_hit"], v["missed"], v["false_hit"], sum(v.values())
 
 
 def main():
-    here = os.path.dirname(os.path.abspath(__file__))
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--vbsim", default=os.path.join(here, "..", "build", "vbsim"))
-    ap.add_argument("--methods", default=DEFAULT_METHODS)
-    ap.add_argument("dirs", nargs="+")
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--vbsim", default=os.path.join(os.path.dirname(__file__), "..", "build", "vbsim"))
+    ap.add_argument("--rays", type=int, default=200)
+    ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--per-case", action="store_true", help="one column per case instead of per scenario")
+    ap.add_argument("--set", action="append", default=[], help="scenario setting key=value (repeatable)")
+    ap.add_argument("scenarios", nargs="+")
     a = ap.parse_args()
-    methods = a.methods.split(",")
-    print("| scenario | rays | " + " | ".join(f"`{m}`" for m in methods) + " |")
-    print("|---|---|" + "---|" * len(methods))
-    for folder in a.dirs:
-        cells, rays = [], 0
-        for m in methods:
-            t = replay_dir(a.vbsim, folder, m)
-            rays = t["rays"]
-            cells.append(f"{t['self_hit']} / {t['missed']} / {t['false_hit']}")
-        print(f"| {os.path.basename(os.path.normpath(folder))} | {rays} | " + " | ".join(cells) + " |")
-        sys.stdout.flush()
+    columns = []  # (label, [traces])
+    with tempfile.TemporaryDirectory() as tmp:
+        for name in a.scenarios:
+            out = os.path.join(tmp, name)
+            subprocess.run([a.vbsim, "gen", name, "--rays", str(a.rays), "--seed", str(a.seed), "-o", out]
+                           + [x for kv in a.set for x in ("--set", kv)],
+                           check=True, stdout=subprocess.DEVNULL)
+            traces = sorted(glob.glob(os.path.join(out, "*.jsonl")))
+            if a.per_case:
+                columns += [(os.path.basename(t)[:-6], [t]) for t in traces]
+            else:
+                columns.append((name, traces))
+        rays = {}
+        rows = []
+        for m in METHODS:
+            cells = []
+            for label, traces in columns:
+                tot = [0, 0, 0, 0]
+                for t in traces:
+                    for i, x in enumerate(replay(a.vbsim, t, m, os.path.join(tmp, "stats.json"))):
+                        tot[i] += x
+                rays[label] = tot[3]
+                cells.append("{} / {} / {}".format(*tot[:3]))
+            rows.append("| `{}` | {} |".format(m, " | ".join(cells)))
+    print("| method | " + " | ".join("{} ({} rays)".format(l, rays[l]) for l, _ in columns) + " |")
+    print("|---" * (len(columns) + 1) + "|")
+    print("\n".join(rows))
 
 
 if __name__ == "__main__":
