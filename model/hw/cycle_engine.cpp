@@ -1,7 +1,6 @@
 #include "hw/cycle_engine.h"
 
 #include <algorithm>
-#include <queue>
 #include <stdexcept>
 #include <vector>
 
@@ -62,17 +61,20 @@ class Engine final : public CycleEngine {
 
   void advance(uint64_t limit) override {
     while (!events_.empty() && !stopped_) {
-      const uint64_t key = events_.top();
+      const uint64_t key = events_.front();
       const uint64_t at = key >> kIdBits;
       if (at >= limit) return;
-      events_.pop();
+      // The handled event stays at the top until the handler's first new
+      // event replaces it (one sift instead of a pop and a push).
+      replace_top_ = true;
       const uint32_t id = static_cast<uint32_t>(key & kIdMask);
       if (id == kSourceId) source_ready(at);
       else step(id, at);
+      if (replace_top_) pop_top();
     }
   }
   bool finished() const override { return stopped_ || events_.empty(); }
-  uint64_t next_event_cycle() const override { return events_.empty() ? 0 : events_.top() >> kIdBits; }
+  uint64_t next_event_cycle() const override { return events_.empty() ? 0 : events_.front() >> kIdBits; }
   void stop() override { stopped_ = true; }
   bool stopped() const override { return stopped_; }
   const HwCounters& counters() const override { return counters_; }
@@ -93,7 +95,43 @@ class Engine final : public CycleEngine {
     uint64_t dispatched = 0;
   };
 
-  void schedule(uint64_t at, uint32_t id) { events_.push((at << kIdBits) | id); }
+  // ---- the event queue: a binary min-heap of keys in events_ ----
+
+  void schedule(uint64_t at, uint32_t id) {
+    const uint64_t key = (at << kIdBits) | id;
+    if (replace_top_) {
+      replace_top_ = false;
+      sift_down(key);
+      return;
+    }
+    size_t i = events_.size();
+    events_.push_back(key);
+    while (i > 0 && events_[(i - 1) / 2] > key) {
+      events_[i] = events_[(i - 1) / 2];
+      i = (i - 1) / 2;
+    }
+    events_[i] = key;
+  }
+  void pop_top() {
+    replace_top_ = false;
+    const uint64_t last = events_.back();
+    events_.pop_back();
+    if (!events_.empty()) sift_down(last);
+  }
+  /// Puts `key` at the top and restores the heap order below it.
+  void sift_down(uint64_t key) {
+    const size_t n = events_.size();
+    size_t i = 0;
+    for (;;) {
+      size_t c = 2 * i + 1;
+      if (c >= n) break;
+      if (c + 1 < n && events_[c + 1] < events_[c]) ++c;
+      if (events_[c] >= key) break;
+      events_[i] = events_[c];
+      i = c;
+    }
+    events_[i] = key;
+  }
 
   void record(const char* name, uint32_t id, uint64_t start, uint64_t end) {
     if (!timeline_ || start < tl_first_ || start >= tl_end_) return;
@@ -269,7 +307,8 @@ class Engine final : public CycleEngine {
   bool avoidance_in_use_;
   std::vector<Core> cores_;
   std::vector<std::unique_ptr<Slot>> slots_;
-  std::priority_queue<uint64_t, std::vector<uint64_t>, std::greater<uint64_t>> events_;
+  std::vector<uint64_t> events_;
+  bool replace_top_ = false;
   TraceRay next_tr_;
   EmittedRay next_er_;
   bool blocked_ = false, stopped_ = false;
