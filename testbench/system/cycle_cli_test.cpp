@@ -14,7 +14,7 @@ TEST_CASE("cycle mode reports an impossible cache and a bad hw field cleanly", "
   write_file(dir / "real.json", R"({"hw": {"memory": {"ideal": false, "l1": {"ways": 512}}}})");
   RunResult r = run_vbsim("replay " + trace + " --mode cycle --config " + (dir / "real.json").string());
   CHECK(r.exit_code == 2);
-  CHECK_THAT(r.output, Catch::StartsWith("vbsim: error: memory.l1.ways:"));
+  CHECK_THAT(r.output, Catch::Contains("real.json: field 'hw.memory.l1.size_bytes'"));
   write_file(dir / "bad.json", R"({"hw": {"box": {"count": -1}}})");
   r = run_vbsim("replay " + trace + " --mode cycle --config " + (dir / "bad.json").string());
   CHECK(r.exit_code == 2);
