@@ -11,19 +11,20 @@ FunctionalReplayer::FunctionalReplayer(const Scene& scene, const Bvh& bvh, const
   check_traversal_depth(bvh);
 }
 
-RayOutcome FunctionalReplayer::replay(const TraceRay& tr) {
-  KindStats& ks = stats_.by_kind[static_cast<int>(tr.kind)];
-  const EmittedRay er = emit_ray(tr, scene_, opt_, track_parents_ ? &parents_ : nullptr);
-  const bool any_hit = opt_.any_hit_for_shadow && tr.kind == RayKind::Shadow && !er.reversed;
+RayOutcome replay_one_ray(const TraceRay& tr, const Scene& scene, const Bvh& bvh,
+                          const ReplayOptions& opt, const CandidateFilter& filter,
+                          const ParentRays* parents, KindStats& ks) {
+  const EmittedRay er = emit_ray(tr, scene, opt, parents);
+  const bool any_hit = opt.any_hit_for_shadow && tr.kind == RayKind::Shadow && !er.reversed;
 
   RayOutcome out;
   const uint64_t rejected_before = ks.candidates.rejected;
-  switch (opt_.tester) {
+  switch (opt.tester) {
     case TesterKind::ThreeHalfPlane:
-      out.hit = closest_hit<ThreeHalfPlaneTester>(bvh_, er.ray, filter_, ks.candidates, ks.traversal, any_hit);
+      out.hit = closest_hit<ThreeHalfPlaneTester>(bvh, er.ray, filter, ks.candidates, ks.traversal, any_hit);
       break;
     case TesterKind::MollerTrumbore:
-      out.hit = closest_hit<MollerTrumboreTester>(bvh_, er.ray, filter_, ks.candidates, ks.traversal, any_hit);
+      out.hit = closest_hit<MollerTrumboreTester>(bvh, er.ray, filter, ks.candidates, ks.traversal, any_hit);
       break;
   }
   out.rejected = ks.candidates.rejected - rejected_before;
@@ -38,13 +39,20 @@ RayOutcome FunctionalReplayer::replay(const TraceRay& tr) {
   if (tr.has_expect) {
     out.scored = true;
     if (verdict_needs_exact(tr, out.answer)) {  // rational numbers only when needed
-      const ExactRay intended = intended_ray(tr, scene_, &parents_);
-      out.verdict = judge(tr, out.answer, scene_, &intended);
+      const ExactRay intended = intended_ray(tr, scene, parents);
+      out.verdict = judge(tr, out.answer, scene, &intended);
     } else {
-      out.verdict = judge(tr, out.answer, scene_, nullptr);
+      out.verdict = judge(tr, out.answer, scene, nullptr);
     }
   }
   ++ks.verdicts[static_cast<int>(out.verdict)];
+  return out;
+}
+
+RayOutcome FunctionalReplayer::replay(const TraceRay& tr) {
+  KindStats& ks = stats_.by_kind[static_cast<int>(tr.kind)];
+  const RayOutcome out =
+      replay_one_ray(tr, scene_, bvh_, opt_, filter_, track_parents_ ? &parents_ : nullptr, ks);
   if (track_parents_) parents_[tr.id] = {tr.o, tr.d};
   return out;
 }

@@ -29,6 +29,15 @@ struct RayOutcome {
   bool reversed = false;
 };
 
+/// One ray through emission, the closest-hit search with `filter` (built from
+/// opt.method) and the verdict, counted into `ks`. `parents` (may be null) holds
+/// the rays seen before, for intended origins and ray-equation hit points.
+/// Depends on nothing but its arguments: the same ray and options give the same
+/// outcome whatever was replayed before.
+RayOutcome replay_one_ray(const TraceRay& tr, const Scene& scene, const Bvh& bvh,
+                          const ReplayOptions& opt, const CandidateFilter& filter,
+                          const ParentRays* parents, KindStats& ks);
+
 class FunctionalReplayer {
  public:
   /// `scene` and `bvh` must outlive the replayer. Throws when the BVH is too deep.
