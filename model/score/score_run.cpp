@@ -3,15 +3,13 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
-#include <exception>
 #include <filesystem>
 #include <set>
-#include <thread>
 
 #include "replay/functional_replayer.h"
 #include "replay/replay_run.h"
+#include "score/parallel_for.h"
 #include "score/trace_blocks.h"
 #include "trace/trace_file.h"
 
@@ -27,29 +25,6 @@ constexpr size_t kBlockRays = 16384;
 bool is_trace_file(const fs::path& p) {
   const std::string ext = p.extension().string();
   return fs::is_regular_file(p) && (ext == ".jsonl" || ext == ".vbt");
-}
-
-/// Runs job(i) for i in [0, n) on `threads` threads; rethrows the first error.
-template <class Job>
-void parallel_for(size_t n, int threads, Job job) {
-  std::atomic<size_t> next{0};
-  std::exception_ptr error;
-  std::atomic<bool> failed{false};
-  auto worker = [&] {
-    for (size_t i; !failed.load() && (i = next.fetch_add(1)) < n;) {
-      try {
-        job(i);
-      } catch (...) {
-        if (!failed.exchange(true)) error = std::current_exception();
-      }
-    }
-  };
-  std::vector<std::thread> pool;
-  const size_t extra = std::min<size_t>(n, static_cast<size_t>(std::max(threads, 1))) - (n ? 1 : 0);
-  for (size_t t = 0; t < extra; ++t) pool.emplace_back(worker);
-  worker();
-  for (std::thread& t : pool) t.join();
-  if (error) std::rethrow_exception(error);
 }
 
 /// Replays one trace with every configuration, adding into cells[0..configs).

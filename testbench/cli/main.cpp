@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
   add_watertight_command(app);
   add_score_command(app);
   add_scenarios_command(app);
+  add_fit_command(app);
   try {
     app.parse(argc, argv);
     if (app.get_subcommands().empty()) return run_default_job();
