@@ -148,3 +148,11 @@ TEST_CASE("score rejects bad input with a clear message", "[system][score][error
   CHECK(r.exit_code != 0);
   CHECK_THAT(r.output, Catch::Contains("bad.jsonl") && Catch::Contains("3"));
 }
+
+TEST_CASE("vbsim scenarios lists every scenario gen accepts", "[system][score]") {
+  const RunResult r = run_vbsim("scenarios --names");
+  REQUIRE(r.exit_code == 0);
+  CHECK_THAT(r.output, Catch::StartsWith("paths\n") || Catch::Contains("\npaths\n"));
+  const RunResult bad = run_vbsim("gen no-such-scenario -o /tmp/vbsim_none");
+  CHECK_THAT(bad.output, Catch::Contains("scenarios: " + r.output.substr(0, r.output.find('\n'))));
+}
