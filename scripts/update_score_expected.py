@@ -18,6 +18,17 @@ OUT = os.path.join(ROOT, "traces", "ci", "score.expected.json")
 # (family directory name, `vbsim gen` arguments before -o)
 GEN = [
     ("paths", "paths --rays 25 --seed 11"),
+    ("random-triangles-rtg", "random-triangles --rays 12 --seed 11"),
+    ("random-triangles-pbrt", "random-triangles --rays 12 --seed 11 --set protocol=pbrt"),
+    ("grazing", "grazing --rays 12 --seed 11"),
+    ("shared-edges", "shared-edges --rays 12 --seed 11"),
+    ("crevice", "crevice --rays 12 --seed 11"),
+    ("corner", "corner --rays 12 --seed 11"),
+    ("layers", "layers --rays 12 --seed 11"),
+    ("coplanar", "coplanar --rays 12 --seed 11"),
+    ("far-instance", "far-instance --rays 12 --seed 11"),
+    ("refraction", "refraction --rays 12 --seed 11"),
+    ("terminator", "terminator --rays 12 --seed 11"),
 ]
 BUNDLED = "traces/bunny"
 METHODS = ",".join([
