@@ -2,7 +2,8 @@
 """Stability sweeps: error rate of each self-intersection method against one
 parameter of a scenario (distance, size, angle, separation) or of a method
 (epsilon, offset, guard bits). Every point is generated with `vbsim gen` and
-replayed with `vbsim replay --stats` per method, in parallel processes; the
+scored with `vbsim score` (every method in one process per point, points in
+parallel processes); the
 results go to a CSV, one PNG chart per sweep and a markdown page naming each
 method's breakdown points.
 
@@ -67,46 +68,51 @@ def generate_point(vbsim, sweep, x, workdir):
     return traces
 
 
-def method_arguments(method, x):
-    """The replay arguments of a method at sweep value x ('{x}' is replaced)."""
-    return [a.replace("{x}", format_value(x)) for a in method["args"]]
+def method_spec(method, x):
+    """The `vbsim score` method entry of a method at sweep value x ('{x}' replaced)."""
+    return method["spec"].replace("{x}", format_value(x))
 
 
-def replay_counts(vbsim, trace, args, stats_path):
-    run([vbsim, "replay", trace, "-q", "--stats", stats_path] + args)
-    with open(stats_path) as f:
-        stats = json.load(f)
-    counts = {v: stats["verdicts"][v] for v in VERDICTS}
-    counts["rays"] = stats["rays"]
-    counts["ops_per_ray"] = stats.get("method_ops", {}).get("per_ray", 0.0)
-    return counts
+def ops_per_ray(row):
+    """The method's operations per ray (method_costs.h) from a score row."""
+    cost, av, rays = row["config"]["cost_ops"], row["avoidance"], row["rays"]
+    total = (cost["emission"] * rays + cost["candidate"] * av["candidates"]
+             + cost["suspect"] * av["suspects"])
+    return total / rays if rays else 0.0
+
+
+def score_point(vbsim, sweep, x, traces):
+    """Scores every method of the sweep on one point's traces, in one process."""
+    folder = os.path.dirname(traces[0])
+    specs = [method_spec(m, x) for m in sweep["methods"]]
+    out = os.path.join(folder, "score.json")
+    run([vbsim, "score", *traces, "-q", "--threads", "1", "--testers", sweep.get("tester", "three-half-plane"),
+         "--methods", ",".join(specs), "--out", out])
+    with open(out) as f:
+        rows = json.load(f)["rows"]
+    result = []
+    for m, spec in zip(sweep["methods"], specs):
+        mine = [r for r in rows if r["method"] == spec and r["kind"] == "all"]
+        if len(mine) != len(traces):
+            sys.exit(f"sweep {sweep['name']}: score gave {len(mine)} rows for {spec}, expected {len(traces)}")
+        row = {"sweep": sweep["name"], "x": x, "method": m["label"], "rays": 0, "ops_per_ray": 0.0,
+               **{v: 0 for v in VERDICTS}}
+        for r in mine:
+            row["rays"] += r["rays"]
+            row["ops_per_ray"] += ops_per_ray(r) * r["rays"]
+            for v in VERDICTS:
+                row[v] += r["counts"][v]
+        row["ops_per_ray"] = row["ops_per_ray"] / row["rays"] if row["rays"] else 0.0
+        result.append(row)
+    return result
 
 
 def run_sweep(vbsim, sweep, workdir, jobs):
-    """Rows of (x, method label, summed counts over the point's traces)."""
+    """Rows of (x, method label, verdict counts summed over the point's traces)."""
+    def point(x):
+        return score_point(vbsim, sweep, x, generate_point(vbsim, sweep, x, workdir))
     with ThreadPoolExecutor(max_workers=jobs) as pool:
-        traces = dict(zip(sweep["values"],
-                          pool.map(lambda x: generate_point(vbsim, sweep, x, workdir),
-                                   sweep["values"])))
-        tasks = []
-        for x in sweep["values"]:
-            for method in sweep["methods"]:
-                for i, trace in enumerate(traces[x]):
-                    stats = os.path.join(os.path.dirname(trace),
-                                         f"stats-{method['label']}-{i}.json".replace(" ", "_"))
-                    tasks.append((x, method["label"], trace, method_arguments(method, x), stats))
-        results = pool.map(lambda t: (t[0], t[1], replay_counts(vbsim, t[2], t[3], t[4])), tasks)
-        rows = {}
-        for x, label, counts in results:
-            row = rows.setdefault((x, label), {"rays": 0, "ops_per_ray": 0.0, **{v: 0 for v in VERDICTS}})
-            row["ops_per_ray"] += counts["ops_per_ray"] * counts["rays"]
-            for k in ("rays",) + VERDICTS:
-                row[k] += counts[k]
-    out = []
-    for (x, label), row in rows.items():
-        row["ops_per_ray"] = row["ops_per_ray"] / row["rays"] if row["rays"] else 0.0
-        out.append({"sweep": sweep["name"], "x": x, "method": label, **row})
-    return out
+        return [row for rows in pool.map(point, sweep["values"]) for row in rows]
 
 
 def write_markdown(path, sweeps, rows_by_sweep, command):
@@ -136,9 +142,8 @@ def main():
     ap.add_argument("--list", action="store_true", help="list the sweeps and exit")
     args = ap.parse_args()
 
-    scenarios = run([args.vbsim, "gen", "--help"])
-    sweeps = [s for s in sweep_definitions.SWEEPS if s["scenario"] + " (" in scenarios
-              or s["scenario"] + ":" in scenarios]
+    scenarios = set(run([args.vbsim, "scenarios", "--names"]).split())
+    sweeps = [s for s in sweep_definitions.SWEEPS if s["scenario"] in scenarios]
     if args.list:
         for s in sweep_definitions.SWEEPS:
             state = "" if s in sweeps else "  (scenario not in this build)"

@@ -12,23 +12,24 @@ def log_range(lo_exp, hi_exp, base=10.0, step=1):
     return [base ** e for e in range(lo_exp, hi_exp + 1, step)]
 
 
-def method(label, *args):
-    return {"label": label, "args": list(args)}
+def method(label, spec):
+    """A line of a chart: its label and its `vbsim score` method entry
+    (METHOD[:option=value...], '{x}' replaced by the sweep value)."""
+    return {"label": label, "spec": spec}
 
 
 # Methods at their default parameters, for sweeps over a scene parameter.
 DEFAULT_METHODS = [
-    method("tmin", "-m", "tmin"),
-    method("primid", "-m", "primid"),
-    method("offset-normal", "-m", "offset-normal"),
-    method("offset-adaptive", "-m", "offset-adaptive"),
-    method("offset-adaptive+primid", "-m", "offset-adaptive+primid"),
-    method("offset-errbound", "-m", "offset-errbound"),
-    method("validity-bit all", "-m", "validity-bit", "--vb-policy", "all"),
-    method("validity-bit vote", "-m", "validity-bit", "--vb-policy", "vote"),
-    method("validity-bit fixed 1e-4", "-m", "validity-bit", "--vb-policy", "vote",
-           "--vb-eps-mode", "fixed", "--vb-eps", "1e-4"),
-    method("sign-only", "-m", "sign-only"),
+    method("tmin", "tmin"),
+    method("primid", "primid"),
+    method("offset-normal", "offset-normal"),
+    method("offset-adaptive", "offset-adaptive"),
+    method("offset-adaptive+primid", "offset-adaptive+primid"),
+    method("offset-errbound", "offset-errbound"),
+    method("validity-bit all", "validity-bit:vb-policy=all"),
+    method("validity-bit vote", "validity-bit:vb-policy=vote"),
+    method("validity-bit fixed 1e-4", "validity-bit:vb-policy=vote:vb-eps-mode=fixed:vb-eps=1e-4"),
+    method("sign-only", "sign-only"),
 ]
 
 BUNNY_PATHS = {"scenario": "paths", "rays": 200, "seed": 1}
@@ -43,13 +44,11 @@ SWEEPS = [
         "values": log_range(-8, 0), "xlog": True, "hard": "both",
         "xlabel": "epsilon or offset (scene units)", "unit": "",
         "methods": [
-            method("tmin", "-m", "tmin", "--tmin-eps", "{x}"),
-            method("offset-normal", "-m", "offset-normal", "--offset-normal-eps", "{x}"),
-            method("offset-direction", "-m", "offset-direction", "--offset-direction-eps", "{x}"),
-            method("validity-bit all, fixed", "-m", "validity-bit", "--vb-policy", "all",
-                   "--vb-eps-mode", "fixed", "--vb-eps", "{x}"),
-            method("validity-bit vote, fixed", "-m", "validity-bit", "--vb-policy", "vote",
-                   "--vb-eps-mode", "fixed", "--vb-eps", "{x}"),
+            method("tmin", "tmin:tmin-eps={x}"),
+            method("offset-normal", "offset-normal:offset-normal-eps={x}"),
+            method("offset-direction", "offset-direction:offset-direction-eps={x}"),
+            method("validity-bit all, fixed", "validity-bit:vb-policy=all:vb-eps-mode=fixed:vb-eps={x}"),
+            method("validity-bit vote, fixed", "validity-bit:vb-policy=vote:vb-eps-mode=fixed:vb-eps={x}"),
         ],
     },
     {
@@ -61,13 +60,9 @@ SWEEPS = [
         "values": list(range(0, 17)), "xlog": False, "hard": "both",
         "xlabel": "guard bits", "unit": "bits",
         "methods": [
-            method("validity-bit all", "-m", "validity-bit", "--vb-policy", "all",
-                   "--vb-min-exponent", "1", "--vb-guard-bits", "{x}"),
-            method("validity-bit vote", "-m", "validity-bit", "--vb-policy", "vote",
-                   "--vb-min-exponent", "1", "--vb-guard-bits", "{x}"),
-            method("validity-bit vote, normal test only", "-m", "validity-bit",
-                   "--vb-policy", "vote", "--vb-tests", "normal",
-                   "--vb-min-exponent", "1", "--vb-guard-bits", "{x}"),
+            method("validity-bit all", "validity-bit:vb-policy=all:vb-min-exponent=1:vb-guard-bits={x}"),
+            method("validity-bit vote", "validity-bit:vb-policy=vote:vb-min-exponent=1:vb-guard-bits={x}"),
+            method("validity-bit vote, normal test only", "validity-bit:vb-policy=vote:vb-tests=normal:vb-min-exponent=1:vb-guard-bits={x}"),
         ],
     },
     {
@@ -78,9 +73,8 @@ SWEEPS = [
         "values": [2 ** k for k in range(0, 17)], "xlog": True, "xbase": 2, "hard": "both",
         "xlabel": "int_scale (ulps)", "unit": "ulps",
         "methods": [
-            method("offset-adaptive", "-m", "offset-adaptive", "--adaptive-int-scale", "{x}"),
-            method("offset-adaptive+primid", "-m", "offset-adaptive+primid",
-                   "--adaptive-int-scale", "{x}"),
+            method("offset-adaptive", "offset-adaptive:adaptive-int-scale={x}"),
+            method("offset-adaptive+primid", "offset-adaptive+primid:adaptive-int-scale={x}"),
         ],
     },
     {
