@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
   add_oracle_command(app);
   add_gen_command(app);
   add_watertight_command(app);
+  add_render_command(app);
   try {
     app.parse(argc, argv);
     if (app.get_subcommands().empty()) return run_default_job();
