@@ -39,9 +39,9 @@ PinholeCamera::PinholeCamera(const CameraSpec& spec, const Bounds3f& bounds, int
   if (spec.eye) {
     eye = to_d(*spec.eye);
   } else {
-    // Far enough that the bounding sphere fits the narrower field of view.
-    const double half_min = std::atan(std::min(tan_v, tan_h));
-    eye = add(target, scale(radius / std::sin(half_min), unit(to_d(kDefaultViewDirection))));
+    // Far enough that the bounding sphere's central disc fills the narrower
+    // field of view (a little of a scene's corners may leave the frame).
+    eye = add(target, scale(radius / std::min(tan_v, tan_h), unit(to_d(kDefaultViewDirection))));
   }
   const D3 f = sub(target, eye);
   if (!(ddot(f, f) > 0.0)) throw std::invalid_argument("camera: eye and target coincide");

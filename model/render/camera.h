@@ -17,7 +17,7 @@ struct CameraSpec {
 };
 
 /// Direction from the target towards the default eye (right, above, in front).
-constexpr Vec3f kDefaultViewDirection{0.35f, 0.45f, 1.0f};
+constexpr Vec3f kDefaultViewDirection{0.35f, 0.6f, 1.0f};
 
 class PinholeCamera {
  public:
