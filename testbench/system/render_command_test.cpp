@@ -65,7 +65,7 @@ TEST_CASE("render writes both images readable by stb_image with the legend's col
   CHECK(printed_count(r.output, "leak") == 0);
 }
 
-TEST_CASE("render takes scene, light and transform from a trace header", "[render][cli]") {
+TEST_CASE("render takes scene and light and transform from a trace header", "[render][cli]") {
   const auto dir = scratch_dir("render_trace");
   write_render_test_obj((dir / "quad.obj").string());
   // A header-only trace moving the scene 2^12 away in x.
