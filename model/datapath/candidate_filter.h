@@ -41,7 +41,9 @@ class CandidateFilter {
       ++c.rejected_primid;
       return false;
     }
-    if (!avoid_) return true;
+    // A camera ray has no parent surface to re-hit: the unit leaves it alone. The
+    // hardware tells it by the ray's kind field, which every ray already carries.
+    if (!avoid_ || ray.kind == RayKind::Primary) return true;
     const AvoidanceDecision dec = avoidance_decide(cfg_, ray, tri, hit);
     c.suspects += dec.suspect;
     if (!dec.reject) return true;

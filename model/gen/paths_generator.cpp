@@ -1,6 +1,7 @@
 #include "gen/paths_generator.h"
 
 #include <cmath>
+#include <stdexcept>
 
 #include "datapath/closest_hit.h"
 #include "datapath/hit_point.h"
@@ -43,7 +44,9 @@ class PathBuilder {
       r.kind = RayKind::Primary;
       r.o = camera;
       r.d = to_f(dadd(target, dscale(-1.0, to_d(camera))));
-      trace_path(r, path % 2 == 0, 0);
+      const bool ray_equation = p_.hit_points == PathsHitPoints::Alternate ? path % 2 == 0
+                                                                           : p_.hit_points == PathsHitPoints::RayEquation;
+      trace_path(r, ray_equation, 0);
     }
   }
 
@@ -154,6 +157,13 @@ class PathBuilder {
 };
 
 }  // namespace
+
+PathsHitPoints paths_hit_point_mode(const std::string& text) {
+  if (text == "both") return PathsHitPoints::Alternate;
+  if (text == "ray") return PathsHitPoints::RayEquation;
+  if (text == "barycentric") return PathsHitPoints::Barycentric;
+  throw std::runtime_error("option '--set hitpoint=" + text + "': expected ray, barycentric or both");
+}
 
 GeneratedPaths generate_paths(const Scene& scene, const Bvh& bvh, const PathsParams& params) {
   const Vec3f lo = scene.bounds.lo, hi = scene.bounds.hi;

@@ -12,6 +12,7 @@
 // might. `expect` is left for the oracle.
 #pragma once
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "scene/bvh.h"
@@ -20,11 +21,20 @@
 
 namespace vbsim {
 
+/// How the "renderer" computes hit points: alternating per path (even paths by
+/// the ray equation, odd ones by barycentrics), or always one way.
+enum class PathsHitPoints { Alternate, RayEquation, Barycentric };
+
+/// The `hitpoint` setting's value ("both", "ray", "barycentric"); throws
+/// naming the setting otherwise.
+PathsHitPoints paths_hit_point_mode(const std::string& text);
+
 struct PathsParams {
   int paths = 200;        ///< camera rays
   int max_depth = 3;      ///< hits along one path at most
   uint64_t seed = 1;
   float ior = 1.5f;       ///< index of refraction of the mesh's material
+  PathsHitPoints hit_points = PathsHitPoints::Alternate;
 };
 
 struct GeneratedPaths {

@@ -17,6 +17,7 @@ std::vector<ScenarioCase> generate_paths_scenario(const ScenarioSettings& s) {
   p.max_depth = static_cast<int>(s.integer("depth", 3));
   p.ior = static_cast<float>(s.number("ior", 1.5));
   p.seed = s.seed();
+  p.hit_points = paths_hit_point_mode(s.text("hitpoint", "both"));
   if (p.paths <= 0) throw std::runtime_error("option '--rays': must be > 0");
   if (p.max_depth < 0) throw std::runtime_error("option '--set depth': must be >= 0");
   if (!(p.ior > 0)) throw std::runtime_error("option '--set ior': must be > 0");

@@ -9,7 +9,17 @@
 #include <stdexcept>
 
 #include "exact/expected_answers.h"
+#include "gen/coplanar_scenario.h"
+#include "gen/corner_scenario.h"
+#include "gen/crevice_scenario.h"
+#include "gen/far_instance_scenario.h"
+#include "gen/grazing_scenario.h"
+#include "gen/layers_scenario.h"
 #include "gen/paths_scenario.h"
+#include "gen/random_triangles_scenario.h"
+#include "gen/refraction_scenario.h"
+#include "gen/shared_edges_scenario.h"
+#include "gen/terminator_scenario.h"
 #include "scene/bvh.h"
 #include "scene/ply_scene_writer.h"
 #include "trace/trace_file.h"
@@ -60,7 +70,17 @@ void ScenarioSettings::check_all_read(const std::string& scenario) const {
 
 const std::vector<Scenario>& scenarios() {
   static const std::vector<Scenario> all = {
-      {"paths", "multi-bounce camera paths over a mesh (set scene=FILE, depth=N, ior=X)", generate_paths_scenario},
+      {"paths", "multi-bounce camera paths over a mesh (set scene=FILE, depth=N, ior=X, hitpoint=ray|barycentric|both)", generate_paths_scenario},
+      {"random-triangles", "isolated random triangles, Ray Tracing Gems Figure 6-7 or pbrt-v4 Reintersect (set protocol=rtg|pbrt)", generate_random_triangles_scenario},
+      {"grazing", "children leaving a tessellated plane, cylinder or bowl at 1e-6 rad to 10 degrees", generate_grazing_scenario},
+      {"shared-edges", "spawn points ulps from shared edges of flat, convex and concave sheets, grazing children", generate_shared_edges_scenario},
+      {"crevice", "concave wedges of 1 to 90 degrees, spawn points near the crease", generate_crevice_scenario},
+      {"corner", "inside box corner: children spawned a tiny gap from the wall they head into", generate_corner_scenario},
+      {"layers", "surfaces closer than an offset: parallel squares, nested spheres, a sphere on a plane (set separation=LIST, offset=X, z=X, shell=X, segments=N, ior=X, hitpoint=...)", generate_layers_scenario},
+      {"coplanar", "duplicated, reversed and overlapping coplanar triangles: ties and in-plane rays (set z=X, hitpoint=...)", generate_coplanar_scenario},
+      {"far-instance", "paths over a mesh translated 2^k away by the header's float32 transform (set k=LIST, scene=FILE, depth=N, ior=X, hitpoint=...)", generate_far_instance_scenario},
+      {"refraction", "closed glass sphere and box: refraction and total-internal-reflection paths inside (set objects=sphere,box, ior=X, bounces=N, segments=N, hitpoint=...)", generate_refraction_scenario},
+      {"terminator", "shadow rays from low-poly spheres with vertex normals near the terminator (set segments=LIST, band=F, hitpoint=ray|barycentric|both)", generate_terminator_scenario},
   };
   return all;
 }

@@ -64,7 +64,9 @@ class IdealMemory final : public MemoryPort {
 };
 
 /// The memory `config` describes for `cores` cores: IdealMemory when `ideal`,
-/// otherwise the L1/L2/DRAM hierarchy.
+/// otherwise the L1/L2/DRAM hierarchy (docs/memory-model.md). Throws
+/// std::invalid_argument starting with the field ("memory.l1.ways: ...") when
+/// the hierarchy's settings are invalid.
 std::unique_ptr<MemoryPort> make_memory(const MemoryConfig& config, int cores);
 
 }  // namespace vbsim::hw

@@ -87,6 +87,7 @@ void apply_replay_config(const nlohmann::json& j, const std::string& file, Repla
   f.number("offset_normal_eps", m.offset_normal_eps);
   f.number("offset_direction_eps", m.offset_direction_eps);
   f.get("bits_per_ray");  // derived; accepted so a stats file's config can be fed back
+  f.get("cost_ops");      // derived, likewise
   if (const auto* a = f.get("adaptive")) {
     Fields fa(*a, file, "adaptive");
     fa.number("origin", m.adaptive.origin);

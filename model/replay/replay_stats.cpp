@@ -1,5 +1,7 @@
 #include "replay/replay_stats.h"
 
+#include "datapath/method_costs.h"
+
 #include <fmt/format.h>
 
 namespace vbsim {
@@ -53,6 +55,19 @@ KindStats ReplayStats::total() const {
   return t;
 }
 
+static nlohmann::json method_cost_json(const MethodCost& c) {
+  return {{"emission", c.emission}, {"candidate", c.candidate}, {"suspect", c.suspect}};
+}
+
+/// The method's operations over the replay: emission once per ray, candidate and
+/// suspect costs times the counts measured (method_costs.h).
+static nlohmann::json method_ops_json(const nlohmann::json& cost, const KindStats& t) {
+  const uint64_t total = cost.value("emission", 0) * t.rays +
+                         cost.value("candidate", 0) * t.candidates.candidates +
+                         cost.value("suspect", 0) * t.candidates.suspects;
+  return {{"total", total}, {"per_ray", ratio(total, t.rays)}};
+}
+
 nlohmann::json ReplayStats::to_json(const nlohmann::json& config) const {
   const KindStats t = total();
   nlohmann::json j;
@@ -74,6 +89,7 @@ nlohmann::json ReplayStats::to_json(const nlohmann::json& config) const {
   j["by_kind"] = kinds;
   j["avoidance"] = avoidance_json(t.candidates);
   j["traversal"] = traversal_json(t.traversal, t.rays);
+  if (config.contains("cost_ops")) j["method_ops"] = method_ops_json(config["cost_ops"], t);
   j["sim"] = {{"mode", mode},
               {"wall_s", wall_s},
               {"rays_per_s", wall_s > 0 ? t.rays / wall_s : 0.0},
@@ -111,6 +127,7 @@ nlohmann::json replay_config_json(const ReplayOptions& opt) {
           {"tester", tester_name(opt.tester)},
           {"hitpoint", hit_point_mode_name(opt.hit_point)},
           {"bits_per_ray", m.bits_per_ray()},
+          {"cost_ops", method_cost_json(method_cost(m))},
           {"shadow_any_hit", opt.any_hit_for_shadow},
           {"tmin_eps", m.tmin_eps},
           {"offset_normal_eps", m.offset_normal_eps},

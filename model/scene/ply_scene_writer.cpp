@@ -26,6 +26,11 @@ void put_vec(std::string& out, Vec3f v) {
   put(out, v.z);
 }
 
+// assimp skips white space right after end_header even in a binary file, so a
+// first vertex coordinate whose low byte is 0x0a (say) would be misread; every
+// vertex therefore starts with a `guard` byte that is not white space.
+constexpr uint8_t kGuardByte = 'G';
+
 }  // namespace
 
 void write_ply_scene(const std::string& path, const std::vector<Triangle>& triangles,
@@ -36,7 +41,7 @@ void write_ply_scene(const std::string& path, const std::vector<Triangle>& trian
                                  triangles.size()));
   std::string out = fmt::format(
       "ply\nformat binary_little_endian 1.0\ncomment written by vbsim: 3 vertices per triangle, "
-      "in triangle order\nelement vertex {}\nproperty float x\nproperty float y\nproperty float z\n",
+      "in triangle order\nelement vertex {}\nproperty uchar guard\nproperty float x\nproperty float y\nproperty float z\n",
       3 * triangles.size());
   if (with_normals) out += "property float nx\nproperty float ny\nproperty float nz\n";
   out += fmt::format("element face {}\nproperty list uchar int vertex_indices\nend_header\n",
@@ -45,6 +50,7 @@ void write_ply_scene(const std::string& path, const std::vector<Triangle>& trian
     const Triangle& t = triangles[k];
     const Vec3f corners[3] = {t.v0, t.v1, t.v2};
     for (int c = 0; c < 3; ++c) {
+      put(out, kGuardByte);
       put_vec(out, corners[c]);
       if (with_normals) put_vec(out, normals[k][c]);
     }

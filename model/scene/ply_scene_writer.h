@@ -3,7 +3,9 @@
 // assimp's OBJ reader misrounds some decimals, docs/scene.md).
 //
 // Layout: binary_little_endian 1.0; one `vertex` element per triangle corner
-// (float x y z, and float nx ny nz when normals are given), three per triangle
+// (uchar guard = 'G', float x y z, and float nx ny nz when normals are given;
+// the guard keeps the first data byte from being white space, which assimp
+// would skip), three per triangle
 // in triangle order; one `face` element per triangle (uchar count = 3, int
 // indices 3k, 3k+1, 3k+2). Loading it gives triangle k = the k-th triangle
 // written, with the same vertices and normals.

@@ -2,6 +2,7 @@
 // everything it printed (stdout and stderr together).
 #pragma once
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <array>
 #include <cstdio>
@@ -29,9 +30,11 @@ inline RunResult run_vbsim(const std::string& args) {
   return r;
 }
 
-/// A fresh scratch directory for one test.
+/// A fresh scratch directory for one test; the process id keeps test runs of
+/// different build trees (or ctest -j) apart.
 inline std::filesystem::path scratch_dir(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / ("vbsim_system_" + name);
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("vbsim_system_" + name + "_" + std::to_string(::getpid()));
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;

@@ -1,5 +1,7 @@
 // The binary PLY scene writer round-trips float32 geometry through assimp bit
 // for bit, in triangle order, with normals.
+#include <unistd.h>
+
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -35,7 +37,7 @@ TEST_CASE("a binary PLY scene loads back bit for bit, in triangle order", "[scen
   }
   tris.push_back(Triangle{{1.1f, 2.2f, 3.3f}, {1.1f, 2.2f, 3.3f}, {1.1f, 2.2f, 3.3f}});  // degenerate: kept
   normals.push_back({Vec3f{0, 0, 1}, Vec3f{0, 0, 1}, Vec3f{0, 0, 1}});
-  const auto path = (std::filesystem::temp_directory_path() / "vbsim_ply_roundtrip.ply").string();
+  const auto path = (std::filesystem::temp_directory_path() / ("vbsim_ply_roundtrip_" + std::to_string(::getpid()) + ".ply")).string();
   write_ply_scene(path, tris, normals);
   const Scene scene = load_scene(path);
   REQUIRE(scene.size() == static_cast<int32_t>(tris.size()));
@@ -50,7 +52,7 @@ TEST_CASE("a binary PLY scene loads back bit for bit, in triangle order", "[scen
 }
 
 TEST_CASE("a binary PLY scene without normals loads without normals", "[scene][ply]") {
-  const auto path = (std::filesystem::temp_directory_path() / "vbsim_ply_plain.ply").string();
+  const auto path = (std::filesystem::temp_directory_path() / ("vbsim_ply_plain_" + std::to_string(::getpid()) + ".ply")).string();
   write_ply_scene(path, {Triangle{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}});
   const Scene scene = load_scene(path);
   CHECK(scene.size() == 1);
@@ -61,4 +63,23 @@ TEST_CASE("a binary PLY scene without normals loads without normals", "[scene][p
 TEST_CASE("the PLY writer names the file it cannot write", "[scene][ply]") {
   CHECK_THROWS_WITH(write_ply_scene("/nonexistent-dir/x.ply", {Triangle{}}), Catch::Contains("/nonexistent-dir/x.ply"));
   CHECK_THROWS_WITH(write_ply_scene("/tmp/x.ply", {Triangle{}}, {{}, {}}), Catch::Contains("normal triples"));
+}
+
+TEST_CASE("a binary PLY scene whose first data byte is white space loads back bit for bit", "[scene][ply]") {
+  // The first vertex's x is written first, low byte first: 0x0a (a line feed)
+  // and the other white-space bytes a reader might skip after end_header.
+  for (const uint32_t low_byte : {0x0au, 0x20u, 0x0du, 0x09u, 0x0bu, 0x0cu, 0x00u}) {
+    const uint32_t bits = 0x3f800000u | low_byte;  // 1.0f with the low mantissa byte set
+    float x;
+    std::memcpy(&x, &bits, sizeof x);
+    const Triangle tri{{x, 2.0f, 3.0f}, {4.0f, -5.0f, 6.0f}, {-7.0f, 8.0f, 9.5f}};
+    const auto path = (std::filesystem::temp_directory_path() / "vbsim_ply_first_byte.ply").string();
+    write_ply_scene(path, {tri});
+    const Scene scene = load_scene(path);
+    INFO("first data byte " << low_byte);
+    REQUIRE(scene.size() == 1);
+    CHECK(same_bits(scene.triangles[0].v0, tri.v0));
+    CHECK(same_bits(scene.triangles[0].v1, tri.v1));
+    CHECK(same_bits(scene.triangles[0].v2, tri.v2));
+  }
 }

@@ -1,0 +1,121 @@
+#include "hw/memory_hierarchy.h"
+
+#include <stdexcept>
+
+namespace vbsim::hw {
+
+namespace {
+
+uint32_t log2_of(uint32_t power_of_two) {
+  uint32_t s = 0;
+  while ((uint32_t{1} << s) < power_of_two) ++s;
+  return s;
+}
+
+double ratio(uint64_t part, uint64_t whole) {
+  return whole ? static_cast<double>(part) / static_cast<double>(whole) : 0.0;
+}
+
+nlohmann::json level_json(const LevelCounters& c) {
+  return {{"accesses", c.accesses},
+          {"hits", c.hits},
+          {"misses", c.misses},
+          {"merges", c.merges},
+          {"hit_rate", ratio(c.hits, c.accesses)},
+          {"mshr_stall_cycles", c.mshr_stall_cycles}};
+}
+
+}  // namespace
+
+MemoryHierarchy::MemoryHierarchy(const MemoryConfig& config, int cores)
+    : config_(config),
+      line_shift_(log2_of(config.l1.line_bytes)),
+      l1_(static_cast<size_t>(cores), CacheLevel(config.l1)),
+      l2_(config.l2),
+      dram_(config.dram_latency, config.dram_bytes_per_cycle, config.l2.line_bytes,
+            config.dram_max_outstanding) {}
+
+uint64_t MemoryHierarchy::read(int core, uint64_t addr, uint32_t bytes, uint64_t now) {
+  if (core < 0 || static_cast<size_t>(core) >= l1_.size())
+    throw std::out_of_range("memory: read by core " + std::to_string(core) + " of " +
+                            std::to_string(l1_.size()));
+  CacheLevel& l1 = l1_[static_cast<size_t>(core)];
+  // Every later lookup of this L1 happens at or after `now`, every later L2
+  // arrival at or after now + l1.hit_latency: fills up to there are final.
+  l1.retire(now);
+  l2_.retire(now + l1.hit_latency());
+
+  const uint64_t first = addr >> line_shift_;
+  const uint64_t last = (addr + (bytes ? bytes - 1 : 0)) >> line_shift_;
+  uint64_t ready = 0;
+  for (uint64_t line = first; line <= last; ++line) {
+    const uint64_t r = read_line(l1, line, now);
+    if (r > ready) ready = r;
+  }
+  if (reads_ == 0) first_now_ = now;
+  if (ready > last_ready_) last_ready_ = ready;
+  ++reads_;
+  bytes_ += bytes;
+  line_requests_ += last - first + 1;
+  return ready;
+}
+
+uint64_t MemoryHierarchy::read_line(CacheLevel& l1, uint64_t line, uint64_t now) {
+  const CacheLevel::Lookup look = l1.lookup(line, now);
+  if (look.outcome != CacheLevel::Outcome::Miss) return look.ready;
+  const CacheLevel::MissStart miss = l1.start_miss(now);
+  const uint64_t fill = read_l2(line, miss.start + l1.hit_latency());
+  l1.hold(miss.mshr, line, fill);
+  return fill;
+}
+
+uint64_t MemoryHierarchy::read_l2(uint64_t line, uint64_t t) {
+  const CacheLevel::Lookup look = l2_.lookup(line, t);
+  if (look.outcome != CacheLevel::Outcome::Miss) return look.ready;
+  const CacheLevel::MissStart miss = l2_.start_miss(t);
+  const uint64_t fill = dram_.read_line(miss.start + l2_.hit_latency());
+  l2_.hold(miss.mshr, line, fill);
+  return fill;
+}
+
+nlohmann::json MemoryHierarchy::stats() const {
+  LevelCounters l1_sum;
+  nlohmann::json per_core = nlohmann::json::array();
+  for (const CacheLevel& l1 : l1_) {
+    const LevelCounters& c = l1.counters();
+    l1_sum.accesses += c.accesses;
+    l1_sum.hits += c.hits;
+    l1_sum.misses += c.misses;
+    l1_sum.merges += c.merges;
+    l1_sum.mshr_stall_cycles += c.mshr_stall_cycles;
+    per_core.push_back(level_json(c));
+  }
+  nlohmann::json l1 = level_json(l1_sum);
+  l1["per_core"] = std::move(per_core);
+
+  const DramCounters& d = dram_.counters();
+  const uint64_t span = reads_ ? last_ready_ - first_now_ : 0;
+  const double bytes_per_cycle = span ? static_cast<double>(d.bytes) / static_cast<double>(span) : 0.0;
+  return {
+      {"model", "hierarchy"},
+      {"reads", reads_},
+      {"bytes", bytes_},
+      {"line_requests", line_requests_},
+      {"span_cycles", span},
+      {"l1", std::move(l1)},
+      {"l2", level_json(l2_.counters())},
+      {"dram",
+       {{"reads", d.reads},
+        {"bytes", d.bytes},
+        {"busy_cycles", dram_.busy_cycles()},
+        {"bytes_per_cycle", bytes_per_cycle},
+        {"bandwidth_use", bytes_per_cycle / config_.dram_bytes_per_cycle}}},
+      {"stall_cycles",
+       {{"l1_mshr_full", l1_sum.mshr_stall_cycles},
+        {"l2_mshr_full", l2_.counters().mshr_stall_cycles},
+        {"dram_outstanding_full", d.outstanding_stall_cycles},
+        {"dram_bandwidth", d.bandwidth_stall_cycles}}},
+  };
+}
+
+}  // namespace vbsim::hw
