@@ -14,12 +14,15 @@ A SCENE argument is one of:
   FILE        a scene (ply, obj, ...) or a trace (.jsonl, .vbt)
   FILE@K      the scene FILE moved 2^K along x, y and z by a float32 instance
               transform (a header-only trace written into WORK)
-Without SCENE arguments: terminator, crevice and far-instance; each of them
-that the vbsim build does not know yet is replaced by its stand-in
-(STAND_INS below) and the figure says so.
+and may end in "+inside" (traces only): the camera sits at the origin of the
+trace's first camera ray and looks along it (60 degree field of view), with a
+point light at the camera, to look into a crevice instead of at its outside.
+Without SCENE arguments: DEFAULT_SCENES (terminator, crevice and far-instance);
+each one whose scenario the vbsim build does not know is replaced by its
+stand-in (STAND_INS below) and the figure says so.
 
     /usr/bin/python3 scripts/make_montage.py                # the committed montage
-    /usr/bin/python3 scripts/make_montage.py terminator traces/bunny/bunny.obj@20
+    /usr/bin/python3 scripts/make_montage.py terminator:terminator-s32 traces/bunny/bunny.obj@20
 """
 import argparse
 import json
@@ -40,7 +43,7 @@ METHODS = ["none", "tmin", "primid", "offset-normal", "offset-direction", "offse
            "offset-errbound", "validity-bit", "sign-only", "shading-position",
            "shading-position-always", "reverse-shadow"]
 
-DEFAULT_SCENES = ["terminator", "crevice", "far-instance"]
+DEFAULT_SCENES = ["terminator:terminator-s8", "crevice:crevice-5deg+inside", "far-instance"]
 
 # Used for a default scene whose scenario does not exist yet (files relative
 # to the repository; "paths" is a scenario).
@@ -120,12 +123,26 @@ def resolve(vbsim, work, spec, rays):
     return spec, pick_trace(directory, name, case)
 
 
-def render(vbsim, scene, method, size, work, tag):
+def inside_view(trace):
+    """Render options for "+inside": camera on the trace's first camera ray,
+    a point light at the camera."""
+    with open(trace) as f:
+        for line in f:
+            ray = json.loads(line) if line.strip() and not line.startswith("#") else {}
+            if "d" in ray and ray.get("parent", -1) == -1:
+                eye, d = ray["o"], ray["d"]
+                target = [eye[i] + d[i] for i in range(3)]
+                fmt = lambda v: ",".join(repr(float(x)) for x in v)  # noqa: E731
+                return ["--camera", fmt(eye + target), "--fov", "60", "--light", "point:" + fmt(eye)]
+    raise SceneError(f"{trace}: no camera ray for '+inside'")
+
+
+def render(vbsim, scene, options, method, size, work, tag):
     img = os.path.join(work, f"{tag}-{method}.png")
     err = os.path.join(work, f"{tag}-{method}-errors.png")
     stats = os.path.join(work, f"{tag}-{method}.json")
     r = run([vbsim, "render", scene, "--method", method, "--size", size, "-o", img,
-             "--errors", err, "--stats", stats, "--quiet"])
+             "--errors", err, "--stats", stats, "--quiet"] + options)
     if r.returncode != 0:
         raise SceneError(f"vbsim render {scene} --method {method} failed:\n{r.stdout}")
     with open(stats) as f:
@@ -179,19 +196,25 @@ def main():
     rows = []
     try:
         for spec in specs:
+            inside = spec.endswith("+inside")
+            spec = spec[:-len("+inside")] if inside else spec
             resolved = resolve(a.vbsim, a.work, spec, a.rays)
-            if resolved is None and not a.scenes and spec in STAND_INS:
-                stand_in = STAND_INS[spec]
+            name = spec.split(":")[0]
+            if resolved is None and not a.scenes and name in STAND_INS:
+                inside = False
+                stand_in = STAND_INS[name]
                 if stand_in.split("@")[0].endswith(".obj"):
                     stand_in = os.path.join(ROOT, stand_in)
                 label, scene = resolve(a.vbsim, a.work, stand_in, a.rays)
-                resolved = (f"{label}\n(stand-in for {spec})", scene)
-                print(f"make_montage: no scenario '{spec}' yet; using {STAND_INS[spec]}")
+                resolved = (f"{label}\n(stand-in for {name})", scene)
+                print(f"make_montage: no scenario '{name}' yet; using {STAND_INS[name]}")
             if resolved is None:
                 raise SceneError(f"{spec}: not a file and not a scenario of {a.vbsim}")
             label, scene = resolved
+            options = inside_view(scene) if inside else []
+            label += "\n(inside)" if inside else ""
             tag = os.path.splitext(os.path.basename(scene))[0]
-            cells = [render(a.vbsim, scene, m, a.size, a.work, tag) for m in methods]
+            cells = [render(a.vbsim, scene, options, m, a.size, a.work, tag) for m in methods]
             for m, (_, _, px) in zip(methods, cells):
                 print(f"{label.splitlines()[0]:<28} {m:<24} acne {px['acne']:>6}  leak {px['leak']:>6}")
             rows.append((label, cells))
