@@ -50,6 +50,8 @@ def generate_point(vbsim, sweep, x, workdir):
     settings = dict(sweep.get("set", {}))
     if "key" in sweep:
         settings[sweep["key"]] = x
+        if "pair" in sweep:  # a range setting pinned to one value: min = max = x
+            settings[sweep["pair"]] = x
     cmd = [vbsim, "gen", sweep["scenario"], "--rays", str(sweep.get("rays", 200)),
            "--seed", str(sweep.get("seed", 1)), "-o", out]
     for k, v in sorted(settings.items()):
@@ -59,7 +61,7 @@ def generate_point(vbsim, sweep, x, workdir):
         run(cmd)
         with open(marker, "w") as f:
             f.write(" ".join(cmd))
-    traces = sorted(glob.glob(os.path.join(out, "*.jsonl")))
+    traces = sorted(glob.glob(os.path.join(out, sweep.get("traces", "*.jsonl"))))
     if not traces:
         sys.exit(f"sweep {sweep['name']}: no trace written in {out}")
     return traces

@@ -55,6 +55,8 @@ def plot_sweep(sweep, rows, path):
             fontsize=7, color="0.4")
     if sweep.get("xlog"):
         ax.set_xscale("log", base=sweep.get("xbase", 10))
+    elif "symlog" in sweep:  # a range that starts at 0: linear below the threshold
+        ax.set_xscale("symlog", linthresh=sweep["symlog"])
     ax.set_yscale("log")
     ax.set_ylim(floor / 2, 1.5)
     ax.set_xlabel(sweep["xlabel"])

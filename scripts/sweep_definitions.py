@@ -3,8 +3,9 @@
 Each sweep: a scenario of `vbsim gen`, the parameter that varies (`key`: a
 `--set` setting of the scenario; or none, when only method arguments vary with
 '{x}'), its values, the methods (label and `vbsim replay` arguments), axis
-labels, and which end of the range is hard (see sweep_charts.py). A sweep whose
-scenario this build lacks is skipped.
+labels, and which end of the range is hard (see sweep_charts.py); `traces`, a
+glob of the point's traces to replay (default all). A sweep whose scenario this
+build lacks is skipped.
 """
 
 def log_range(lo_exp, hi_exp, base=10.0, step=1):
@@ -81,5 +82,72 @@ SWEEPS = [
             method("offset-adaptive+primid", "-m", "offset-adaptive+primid",
                    "--adaptive-int-scale", "{x}"),
         ],
+    },
+    {
+        "name": "distance", "scenario": "random-triangles", "rays": 60, "seed": 1,
+        "title": "Distance from the origin (Ray Tracing Gems Figure 6-7 triangles)",
+        "about": "Isolated random triangles (edge scale 2^-16 to 2^22) whose centres lie "
+                 "2^k from the origin; a bounce and diffuse children leave each hit. Every "
+                 "child's exact answer is a miss, so every hit is a self hit.",
+        "key": "dist_min_log2", "set": {}, "values": list(range(-16, 25, 4)),
+        "pair": "dist_max_log2", "xlog": False, "hard": "high",
+        "xlabel": "log2 of the distance from the origin", "unit": "",
+        "methods": DEFAULT_METHODS,
+    },
+    {
+        "name": "triangle-size", "scenario": "random-triangles", "rays": 60, "seed": 1,
+        "title": "Triangle size (Ray Tracing Gems Figure 6-7 triangles)",
+        "about": "Isolated random triangles at distances 2^-16 to 2^22 whose vertices lie "
+                 "2^k from their centre.",
+        "key": "size_min_log2", "set": {}, "values": list(range(-16, 23, 4)),
+        "pair": "size_max_log2", "xlog": False, "hard": "low",
+        "xlabel": "log2 of the triangle size", "unit": "",
+        "methods": DEFAULT_METHODS,
+    },
+    {
+        "name": "far-instance", "scenario": "far-instance", "rays": 60, "seed": 1,
+        "title": "A mesh 2^k from the origin (bunny paths under a float32 instance transform)",
+        "about": "The bunny translated by 2^k along (1, 1, 1); multi-bounce paths over it.",
+        "key": "k", "values": list(range(0, 25, 4)), "xlog": False, "hard": "high",
+        "xlabel": "k (translation 2^k)", "unit": "",
+        "methods": DEFAULT_METHODS,
+    },
+    {
+        "name": "grazing-angle", "scenario": "grazing", "rays": 100, "seed": 1,
+        "title": "Grazing angle of the child ray (plane, cylinder, bowl)",
+        "about": "Diffuse children leaving a tessellated plane, a convex cylinder and a "
+                 "concave bowl at one fixed elevation angle per point.",
+        "key": "angle_min", "pair": "angle_max", "set": {"angles": 1},
+        "values": [1e-6, 1e-5, 1e-4, 1e-3, 1e-2, 0.0524, 0.1745], "xlog": True, "hard": "low",
+        "xlabel": "elevation of the child above the surface (rad)", "unit": "rad",
+        "methods": DEFAULT_METHODS,
+    },
+    {
+        "name": "dihedral-angle", "scenario": "shared-edges", "rays": 100, "seed": 1,
+        "title": "Dihedral angle at shared edges (flat, convex, concave sheets)",
+        "about": "Spawn points a few ulps from shared edges and vertices of sheets folded "
+                 "by 180 +/- delta degrees; grazing children.",
+        "key": "delta", "values": [0, 0.001, 0.01, 0.1, 0.3, 1], "symlog": 0.001, "hard": "both",
+        "xlabel": "fold delta (degrees from flat)", "unit": "deg",
+        "methods": DEFAULT_METHODS,
+    },
+    {
+        "name": "crevice-angle", "scenario": "crevice", "rays": 100, "seed": 1,
+        "title": "Opening angle of a crevice (Ray Tracing Gems Figure 6-8)",
+        "about": "Concave wedges; spawn points 1e-6 to 1e-2 from the crease.",
+        "key": "angles", "values": [1, 2, 5, 10, 20, 45, 90], "xlog": True, "hard": "low",
+        "xlabel": "opening angle (degrees)", "unit": "deg",
+        "methods": DEFAULT_METHODS,
+    },
+    {
+        "name": "layer-separation", "scenario": "layers", "rays": 100, "seed": 1,
+        "title": "Separation of parallel layers, in units of the offset (1e-4)",
+        "about": "A decal over a wall and a thin sheet, S times 1e-4 apart; refraction, "
+                 "reflection and shadow children toward the neighbour. Fixed offsets and "
+                 "tmin are 1e-4.",
+        "key": "separation", "traces": "layers-sep*.jsonl",
+        "values": [0.5, 0.7, 1.0, 1.5, 2.0, 3.0, 5.0, 10.0], "xlog": True, "hard": "low",
+        "xlabel": "separation / offset", "unit": "x offset",
+        "methods": DEFAULT_METHODS,
     },
 ]

@@ -71,24 +71,34 @@ BenchResult run_functional_bench(const Scene& scene, const ReplayOptions& opt, c
     res.box_tests_per_ray = static_cast<double>(total.traversal.box_tests) / p.rays;
     res.triangle_tests_per_ray = static_cast<double>(total.traversal.triangle_tests) / p.rays;
 
-    t0 = Clock::now();
-    for (size_t i = 0; i < rays.size(); ++i) {
-      int32_t prim;
-      float t, u, v;
-      const TraceRay& r = rays[i];
-      theirs[i] = embree.intersect(r.o, r.d, r.tmin, r.tmax, prim, t, u, v) ? prim : -1;
-    }
-    best_embree = std::min(best_embree, seconds_since(t0));
+    best_embree = std::min(best_embree, time_embree(embree, rays, theirs));
   }
-  res.vbsim_rays_per_s = p.rays / best_vbsim;
-  res.embree_rays_per_s = p.rays / best_embree;
-  res.ratio = res.vbsim_rays_per_s / res.embree_rays_per_s;
+  finish_bench(res, best_vbsim, best_embree, ours, theirs);
+  return res;
+}
+
+double time_embree(const EmbreeReference& embree, const std::vector<TraceRay>& rays, std::vector<int32_t>& prims) {
+  prims.resize(rays.size());
+  const auto t0 = Clock::now();
   for (size_t i = 0; i < rays.size(); ++i) {
+    int32_t prim;
+    float t, u, v;
+    const TraceRay& r = rays[i];
+    prims[i] = embree.intersect(r.o, r.d, r.tmin, r.tmax, prim, t, u, v) ? prim : -1;
+  }
+  return seconds_since(t0);
+}
+
+void finish_bench(BenchResult& res, double vbsim_s, double embree_s, const std::vector<int32_t>& ours,
+                  const std::vector<int32_t>& theirs) {
+  res.vbsim_rays_per_s = res.rays / vbsim_s;
+  res.embree_rays_per_s = res.rays / embree_s;
+  res.ratio = res.vbsim_rays_per_s / res.embree_rays_per_s;
+  for (size_t i = 0; i < ours.size(); ++i) {
     res.vbsim_hits += ours[i] >= 0;
     res.embree_hits += theirs[i] >= 0;
     res.same_prim += ours[i] == theirs[i];
   }
-  return res;
 }
 
 }  // namespace vbsim

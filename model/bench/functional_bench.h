@@ -39,6 +39,14 @@ struct BenchResult {
 /// points inside its bounding box (so most of them hit). Deterministic per seed.
 std::vector<TraceRay> bench_rays(const Scene& scene, int64_t count, uint64_t seed);
 
+class EmbreeReference;
+
+/// Seconds Embree's rtcIntersect1 takes over `rays`; each ray's triangle (or -1) into `prims`.
+double time_embree(const EmbreeReference& embree, const std::vector<TraceRay>& rays, std::vector<int32_t>& prims);
+/// Fills the speeds, ratio and agreement counts of `res` (whose `rays` is set).
+void finish_bench(BenchResult& res, double vbsim_s, double embree_s, const std::vector<int32_t>& ours,
+                  const std::vector<int32_t>& theirs);
+
 BenchResult run_functional_bench(const Scene& scene, const ReplayOptions& opt, const BenchParams& p);
 
 }  // namespace vbsim

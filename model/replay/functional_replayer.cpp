@@ -11,22 +11,35 @@ FunctionalReplayer::FunctionalReplayer(const Scene& scene, const Bvh& bvh, const
   check_traversal_depth(bvh);
 }
 
+EmittedRay FunctionalReplayer::emit(const TraceRay& tr) {
+  const EmittedRay er = emit_ray(tr, scene_, opt_, track_parents_ ? &parents_ : nullptr);
+  if (track_parents_) parents_[tr.id] = {tr.o, tr.d};
+  return er;
+}
+
 RayOutcome FunctionalReplayer::replay(const TraceRay& tr) {
   KindStats& ks = stats_.by_kind[static_cast<int>(tr.kind)];
-  const EmittedRay er = emit_ray(tr, scene_, opt_, track_parents_ ? &parents_ : nullptr);
-  const bool any_hit = opt_.any_hit_for_shadow && tr.kind == RayKind::Shadow && !er.reversed;
-
-  RayOutcome out;
+  const EmittedRay er = emit(tr);
+  const bool stop_at_any = any_hit(tr, er);
   const uint64_t rejected_before = ks.candidates.rejected;
+  Hit hit;
   switch (opt_.tester) {
     case TesterKind::ThreeHalfPlane:
-      out.hit = closest_hit<ThreeHalfPlaneTester>(bvh_, er.ray, filter_, ks.candidates, ks.traversal, any_hit);
+      hit = closest_hit<ThreeHalfPlaneTester>(bvh_, er.ray, filter_, ks.candidates, ks.traversal, stop_at_any);
       break;
     case TesterKind::MollerTrumbore:
-      out.hit = closest_hit<MollerTrumboreTester>(bvh_, er.ray, filter_, ks.candidates, ks.traversal, any_hit);
+      hit = closest_hit<MollerTrumboreTester>(bvh_, er.ray, filter_, ks.candidates, ks.traversal, stop_at_any);
       break;
   }
-  out.rejected = ks.candidates.rejected - rejected_before;
+  return conclude(tr, er, hit, ks.candidates.rejected - rejected_before);
+}
+
+RayOutcome FunctionalReplayer::conclude(const TraceRay& tr, const EmittedRay& er, const Hit& hit,
+                                        uint64_t rejected) {
+  KindStats& ks = stats_.by_kind[static_cast<int>(tr.kind)];
+  RayOutcome out;
+  out.hit = hit;
+  out.rejected = rejected;
   out.reversed = er.reversed;
   // A reversed shadow ray is blocked by anything but the parent's own triangle.
   out.answer = out.hit.prim;
@@ -45,7 +58,6 @@ RayOutcome FunctionalReplayer::replay(const TraceRay& tr) {
     }
   }
   ++ks.verdicts[static_cast<int>(out.verdict)];
-  if (track_parents_) parents_[tr.id] = {tr.o, tr.d};
   return out;
 }
 

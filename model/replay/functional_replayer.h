@@ -38,6 +38,20 @@ class FunctionalReplayer {
   /// triangle indices are in range for the scene (the trace readers check this).
   RayOutcome replay(const TraceRay& tr);
 
+  // The three parts of replay(), for a timing model that runs the search
+  // itself (hw/cycle_engine): emit() before the search (it also records the
+  // ray as a possible parent), conclude() after it with the search's result.
+  // Each ray must go through both, in trace order for emit().
+  EmittedRay emit(const TraceRay& tr);
+  /// Whether the search of `tr` (emitted as `er`) stops at the first accepted hit.
+  bool any_hit(const TraceRay& tr, const EmittedRay& er) const {
+    return opt_.any_hit_for_shadow && tr.kind == RayKind::Shadow && !er.reversed;
+  }
+  /// The outcome of a search that returned `hit` with `rejected` rejected
+  /// candidates; adds the ray to the statistics.
+  RayOutcome conclude(const TraceRay& tr, const EmittedRay& er, const Hit& hit, uint64_t rejected);
+  const CandidateFilter& filter() const { return filter_; }
+
   /// Keep parent rays for intended origins (default true; a benchmark on
   /// parentless rays turns it off).
   void set_track_parents(bool on) { track_parents_ = on; }

@@ -1,69 +1,15 @@
 #include "replay/replay_config.h"
 
-#include <fmt/format.h>
-
-#include <cmath>
 #include <fstream>
-#include <map>
+
+#include "replay/config_fields.h"
 
 namespace vbsim {
 
 namespace {
 
-[[noreturn]] void fail(const std::string& file, const std::string& field, const std::string& why) {
-  throw ConfigError(fmt::format("{}: field '{}': {}", file, field, why));
-}
-
-/// Reads the fields of one JSON object, remembering which were known.
-class Fields {
- public:
-  Fields(const nlohmann::json& j, std::string file, std::string prefix)
-      : j_(j), file_(std::move(file)), prefix_(std::move(prefix)) {
-    if (!j_.is_object()) fail(file_, prefix_.empty() ? "<root>" : prefix_, "must be an object");
-  }
-  ~Fields() noexcept(false) {
-    if (std::uncaught_exceptions()) return;
-    for (const auto& [key, value] : j_.items())
-      if (!seen_.count(key)) fail(file_, path(key), "unknown field");
-  }
-  std::string path(const std::string& key) const { return prefix_.empty() ? key : prefix_ + "." + key; }
-  const nlohmann::json* get(const std::string& key) {
-    seen_.insert({key, true});
-    const auto it = j_.find(key);
-    return it == j_.end() ? nullptr : &*it;
-  }
-  void number(const std::string& key, float& out) {
-    if (const auto* v = get(key)) {
-      if (!v->is_number() || !std::isfinite(v->get<double>())) fail(file_, path(key), "must be a finite number");
-      out = v->get<float>();
-    }
-  }
-  void integer(const std::string& key, int& out) {
-    if (const auto* v = get(key)) {
-      if (!v->is_number_integer()) fail(file_, path(key), "must be an integer");
-      out = v->get<int>();
-    }
-  }
-  void boolean(const std::string& key, bool& out) {
-    if (const auto* v = get(key)) {
-      if (!v->is_boolean()) fail(file_, path(key), "must be true or false");
-      out = v->get<bool>();
-    }
-  }
-  template <class Parse>
-  void name(const std::string& key, Parse parse) {
-    if (const auto* v = get(key)) {
-      if (!v->is_string() || !parse(v->get<std::string>()))
-        fail(file_, path(key), "unknown value " + v->dump());
-    }
-  }
-  const std::string& file() const { return file_; }
-
- private:
-  const nlohmann::json& j_;
-  std::string file_, prefix_;
-  std::map<std::string, bool> seen_;
-};
+using config_fields::fail;
+using config_fields::Fields;
 
 }  // namespace
 
@@ -88,6 +34,7 @@ void apply_replay_config(const nlohmann::json& j, const std::string& file, Repla
   f.number("offset_direction_eps", m.offset_direction_eps);
   f.get("bits_per_ray");  // derived; accepted so a stats file's config can be fed back
   f.get("cost_ops");      // derived, likewise
+  f.get("hw");  // the cycle-level model's settings: read by hw/hw_config.h in cycle mode
   if (const auto* a = f.get("adaptive")) {
     Fields fa(*a, file, "adaptive");
     fa.number("origin", m.adaptive.origin);
@@ -119,16 +66,18 @@ void apply_replay_config(const nlohmann::json& j, const std::string& file, Repla
   validate_replay_options(opt, file);
 }
 
-void load_replay_config(const std::string& path, ReplayOptions& opt) {
+nlohmann::json read_config_json(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw ConfigError(fmt::format("{}: cannot open config file", path));
-  nlohmann::json j;
   try {
-    j = nlohmann::json::parse(in);
+    return nlohmann::json::parse(in);
   } catch (const nlohmann::json::parse_error& e) {
     throw ConfigError(fmt::format("{}: not valid JSON: {}", path, e.what()));
   }
-  apply_replay_config(j, path, opt);
+}
+
+void load_replay_config(const std::string& path, ReplayOptions& opt) {
+  apply_replay_config(read_config_json(path), path, opt);
 }
 
 void validate_replay_options(const ReplayOptions& opt, const std::string& origin) {

@@ -20,6 +20,9 @@ struct ConfigError : std::runtime_error {
 /// an unknown name or an out-of-range value; unknown fields are errors too.
 void apply_replay_config(const nlohmann::json& j, const std::string& file, ReplayOptions& opt);
 
+/// Reads a JSON config file; ConfigError when it cannot be read or parsed.
+nlohmann::json read_config_json(const std::string& path);
+
 /// Reads and applies a JSON config file.
 void load_replay_config(const std::string& path, ReplayOptions& opt);
 

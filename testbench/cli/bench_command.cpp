@@ -4,6 +4,7 @@
 
 #include <fstream>
 
+#include "bench/cycle_bench.h"
 #include "bench/functional_bench.h"
 #include "commands.h"
 #include "method_options.h"
@@ -20,12 +21,13 @@ struct BenchArgs {
   uint64_t seed = 1;
   int repeats = 3;
   std::string json;
+  std::string preset;  // cycle mode
   MethodOptions method;
 };
 
 void run_bench(const BenchArgs& a) {
-  if (a.mode != "functional")
-    throw std::runtime_error(fmt::format("option '--mode': '{}' is not available; modes: functional", a.mode));
+  if (a.mode != "functional" && a.mode != "cycle")
+    throw std::runtime_error(fmt::format("option '--mode': '{}' is not available; modes: functional, cycle", a.mode));
   if (a.rays <= 0) throw std::runtime_error("option '--rays': must be > 0");
   if (a.repeats <= 0) throw std::runtime_error("option '--repeats': must be > 0");
   const ReplayOptions opt = resolve_method_options(a.method);
@@ -34,9 +36,20 @@ void run_bench(const BenchArgs& a) {
   p.rays = a.rays;
   p.seed = a.seed;
   p.repeats = a.repeats;
-  const BenchResult r = run_functional_bench(scene, opt, p);
-
-  nlohmann::json j = r.to_json();
+  nlohmann::json j;
+  BenchResult r;
+  if (a.mode == "cycle") {
+    const hw::HwConfig cfg = hw::resolve_hw_config(a.method.config, a.preset);
+    const CycleBenchResult c = run_cycle_bench(scene, opt, cfg, p);
+    r = c.speed;
+    j = r.to_json();
+    j["hw"] = {{"config", hw::hw_config_json(cfg)}, {"cycles", c.cycles}, {"rays_per_cycle", c.rays_per_cycle}};
+    fmt::print("cycle-level model: {} preset, {} cycles, {:.4f} rays/cycle\n", cfg.preset, c.cycles,
+               c.rays_per_cycle);
+  } else {
+    r = run_functional_bench(scene, opt, p);
+    j = r.to_json();
+  }
   j["mode"] = a.mode;
   j["scene"] = a.scene;
   j["triangles"] = scene.size();
@@ -62,7 +75,8 @@ void run_bench(const BenchArgs& a) {
 void add_bench_command(CLI::App& app) {
   auto args = std::make_shared<BenchArgs>();
   CLI::App* cmd = app.add_subcommand("bench", "time vbsim against Embree on the same rays (single thread)");
-  cmd->add_option("--mode", args->mode, "what to time: functional")->capture_default_str();
+  cmd->add_option("--mode", args->mode, "what to time: functional or cycle")->capture_default_str();
+  cmd->add_option("--preset", args->preset, "cycle mode: hardware preset [the config's hw.preset, else small]");
   cmd->add_option("--scene", args->scene, "scene file")->capture_default_str();
   cmd->add_option("--rays", args->rays, "number of random rays")->capture_default_str();
   cmd->add_option("--seed", args->seed, "random seed")->capture_default_str();

@@ -3,11 +3,13 @@
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
+#include <cstdlib>
 #include <exception>
+#include <systemc>
 
 #include "commands.h"
 
-int main(int argc, char** argv) {
+int sc_main(int argc, char** argv) {
   using namespace vbsim::cli;
   CLI::App app{
       "vbsim: cycle-level simulator of a ray-tracing accelerator with validity-bit "
@@ -30,4 +32,11 @@ int main(int argc, char** argv) {
     return 2;
   }
   return 0;
+}
+
+// libsystemc.so brings a main() that calls sc_main(); this one (which the
+// linker prefers) only silences SystemC's banner first.
+int main(int argc, char** argv) {
+  setenv("SYSTEMC_DISABLE_COPYRIGHT_MESSAGE", "1", 0);
+  return sc_core::sc_elab_and_sim(argc, argv);
 }

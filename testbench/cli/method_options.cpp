@@ -35,7 +35,7 @@ void add_method_options(CLI::App& app, MethodOptions& o, const std::string& defa
 ReplayOptions resolve_method_options(const MethodOptions& o) {
   ReplayOptions opt;
   if (!o.config.empty()) load_replay_config(o.config, opt);
-  nlohmann::json j;
+  nlohmann::json j = nlohmann::json::object();  // empty when only --config is given
   if (!o.method.empty()) j["method"] = o.method;
   else if (o.config.empty()) j["method"] = o.default_method;
   if (!o.tester.empty()) j["tester"] = o.tester;

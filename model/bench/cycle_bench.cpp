@@ -1,0 +1,51 @@
+#include "bench/cycle_bench.h"
+
+#include <algorithm>
+#include <chrono>
+
+#include "hw/cycle_replay.h"
+#include "scene/embree_reference.h"
+
+namespace vbsim {
+
+CycleBenchResult run_cycle_bench(const Scene& scene, const ReplayOptions& opt, const hw::HwConfig& cfg,
+                                 const BenchParams& p) {
+  CycleBenchResult out;
+  BenchResult& res = out.speed;
+  const std::vector<TraceRay> rays = bench_rays(scene, p.rays, p.seed);
+  res.rays = p.rays;
+  auto t0 = std::chrono::steady_clock::now();
+  const Bvh bvh = build_bvh(scene);
+  res.bvh_build_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  t0 = std::chrono::steady_clock::now();
+  const EmbreeReference embree(scene);
+  res.embree_build_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+
+  std::vector<int32_t> ours(rays.size()), theirs;
+  double best_vbsim = 1e300, best_embree = 1e300;
+  hw::CycleRunOptions options;
+  options.track_parents = false;
+  for (int rep = 0; rep < p.repeats; ++rep) {
+    size_t next = 0;
+    const hw::RayFeed feed = [&](TraceRay& tr) {
+      if (next == rays.size()) return false;
+      tr = rays[next++];
+      return true;
+    };
+    const hw::RayResultSink sink = [&](const TraceRay& tr, const RayOutcome& o, uint64_t) {
+      ours[static_cast<size_t>(tr.id)] = o.answer;
+    };
+    const hw::CycleRunResult run = hw::run_cycle_replay(feed, scene, bvh, opt, cfg, sink, options);
+    best_vbsim = std::min(best_vbsim, run.stats.wall_s);
+    const KindStats total = run.stats.total();
+    res.box_tests_per_ray = static_cast<double>(total.traversal.box_tests) / p.rays;
+    res.triangle_tests_per_ray = static_cast<double>(total.traversal.triangle_tests) / p.rays;
+    out.cycles = run.counters.cycles;
+    out.rays_per_cycle = run.counters.cycles ? static_cast<double>(run.counters.rays) / run.counters.cycles : 0;
+    best_embree = std::min(best_embree, time_embree(embree, rays, theirs));
+  }
+  finish_bench(res, best_vbsim, best_embree, ours, theirs);
+  return out;
+}
+
+}  // namespace vbsim

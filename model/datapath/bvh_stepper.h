@@ -1,0 +1,191 @@
+// BvhStepper: the closest-hit search of closest_hit.h cut into the steps a
+// hardware ray slot performs, so that a timing model can charge each step:
+//
+//   begin        the root box test (the ray's latched root bounds, no fetch)
+//   node_step    fetch of node A -> both child box tests -> descend into the
+//                nearer child met, push the farther one when both are met
+//   triangle_step  one triangle of the current leaf -> tester -> candidate
+//                filter (primid, the avoidance unit); an accepted hit shortens
+//                the interval, a rejected one does not
+//   leaf_done    after the leaf's triangles: pop the next reachable subtree
+//   refilled     after a stack refill read (below)
+//
+// Each step returns the next request: fetch a node, fetch a leaf's triangles,
+// refill the stack from memory, or done. Visiting order, tie breaking and
+// counters are those of closest_hit(), so the hit is bit-for-bit the same.
+//
+// Bounded stack: a slot holds `onchip_depth` stack entries on chip. A push onto
+// a full on-chip stack spills its oldest entry to the slot's spill area in
+// memory (counted in spills()); a pop that finds the on-chip stack empty while
+// spilled entries remain returns a Refill request for the top min(depth, n)
+// spilled entries, one read (counted in refills()). The logical stack, and so
+// the traversal order, is unchanged; only the timing pays for the overflow.
+#pragma once
+#include <cstdint>
+#include <optional>
+
+#include "datapath/candidate_filter.h"
+#include "datapath/closest_hit.h"
+#include "datapath/hit.h"
+#include "datapath/ray.h"
+#include "datapath/ray_box_tester.h"
+#include "scene/bvh.h"
+
+namespace vbsim {
+
+struct StepRequest {
+  enum Kind : uint8_t { Node, Leaf, Refill, Done };
+  Kind kind = Done;
+  uint32_t index = 0;  ///< Node: node index; Leaf: first triangle; Refill: first stack entry to read
+  uint32_t count = 0;  ///< Leaf: triangles; Refill: entries to read
+};
+
+/// What one triangle step saw.
+struct TriangleStepOutcome {
+  bool candidate = false;  ///< the tester reported a hit inside the interval
+  bool suspect = false;    ///< the avoidance unit found equal sign and front/back bits
+  bool accepted = false;   ///< became the closest hit so far
+  bool stop = false;       ///< any-hit search: the ray is finished
+};
+
+template <class Tester>
+class BvhStepper {
+ public:
+  /// Bytes of one stack entry in the spill area (node/leaf reference and entry distance).
+  static constexpr uint32_t kEntryBytes = 16;
+
+  /// `bvh` and `filter` must outlive the stepper; onchip_depth >= 1.
+  BvhStepper(const Bvh& bvh, const CandidateFilter& filter, int onchip_depth)
+      : bvh_(&bvh), filter_(&filter), onchip_depth_(onchip_depth < 1 ? 1 : onchip_depth) {}
+
+  /// Latches `ray` and tests the root box. Counters go to `cc` and `tc`
+  /// (which must outlive the search).
+  StepRequest begin(const Ray& ray, bool any_hit, CandidateCounters& cc, TraversalCounters& tc) {
+    ray_ = ray;
+    any_hit_ = any_hit;
+    cc_ = &cc;
+    tc_ = &tc;
+    best_ = Hit{};
+    tmax_ = ray.tmax;
+    sp_ = onchip_ = 0;
+    rejected_ = spills_ = refills_ = 0;
+    finished_ = false;
+    if (bvh_->tris.empty()) return done();  // an empty scene: nothing is read or counted
+    tester_.emplace(ray_);
+    box_.emplace(ray_);
+    ++tc.box_tests;
+    if (!box_->hits(bvh_->root_bounds, tmax_)) return done();
+    return visit(bvh_->root);
+  }
+
+  /// Both child boxes of the current node (the request was Node).
+  StepRequest node_step() {
+    const BvhNode& n = bvh_->nodes[current_.index];
+    ++tc_->node_visits;
+    tc_->box_tests += 2;
+    float t0, t1;
+    const unsigned hit = box_->hits(n, tmax_, t0, t1);
+    if (hit == 0u) return pop();
+    const bool first0 = hit == 1u || (hit == 3u && t0 <= t1);
+    if (hit == 3u) push(n.child(first0 ? 1 : 0), first0 ? t1 : t0);
+    return visit(n.child(first0 ? 0 : 1));
+  }
+
+  /// Triangle `i` (an index in Bvh::tris inside the current leaf, taken in order).
+  TriangleStepOutcome triangle_step(uint32_t i) {
+    TriangleStepOutcome out;
+    const BvhTriangle& bt = bvh_->tris[i];
+    ++tc_->triangle_tests;
+    Hit h;
+    if (!tester_->intersect(bt.tri, tmax_, h)) return out;
+    out.candidate = true;
+    h.prim = static_cast<int32_t>(bt.prim);
+    const uint64_t suspects_before = cc_->suspects;
+    const bool accept = filter_->accept(ray_, bt.tri, h.prim, h, *cc_);
+    out.suspect = cc_->suspects != suspects_before;
+    if (!accept) {
+      ++rejected_;
+      return out;
+    }
+    out.accepted = true;
+    best_ = h;
+    tmax_ = h.t;
+    if (any_hit_) out.stop = finished_ = true;
+    return out;
+  }
+
+  /// After the current leaf's triangles (or after a triangle step that stopped).
+  StepRequest leaf_done() { return finished_ ? done() : pop(); }
+
+  /// After the Refill read: the entries it named are on chip again.
+  StepRequest refilled() {
+    onchip_ = refill_count_;
+    return pop();
+  }
+
+  const Hit& hit() const { return best_; }
+  uint64_t rejected() const { return rejected_; }  ///< candidates the filter rejected for this ray
+  uint64_t spills() const { return spills_; }      ///< entries pushed past the on-chip depth
+  uint64_t refills() const { return refills_; }    ///< refill reads
+  int onchip_depth() const { return onchip_depth_; }
+
+ private:
+  StepRequest done() {
+    finished_ = true;
+    return {StepRequest::Done, 0, 0};
+  }
+
+  StepRequest visit(BvhRef r) {
+    current_ = r;
+    if (r.is_leaf()) return {StepRequest::Leaf, r.index, r.count};
+    return {StepRequest::Node, r.index, 0};
+  }
+
+  void push(BvhRef r, float t) {
+    stack_[sp_] = {r.index, r.count, t};
+    ++sp_;
+    if (onchip_ == onchip_depth_) ++spills_;  // the oldest on-chip entry goes to memory
+    else ++onchip_;
+  }
+
+  /// The next subtree the ray can still reach before its closest hit.
+  StepRequest pop() {
+    for (;;) {
+      if (sp_ == 0) return done();
+      if (onchip_ == 0) {
+        refill_count_ = sp_ < onchip_depth_ ? sp_ : onchip_depth_;
+        ++refills_;
+        return {StepRequest::Refill, static_cast<uint32_t>(sp_ - refill_count_),
+                static_cast<uint32_t>(refill_count_)};
+      }
+      --sp_;
+      --onchip_;
+      if (stack_[sp_].t > tmax_) continue;
+      return visit(BvhRef{stack_[sp_].index, stack_[sp_].count});
+    }
+  }
+
+  struct Entry {
+    uint32_t index, count;
+    float t;
+  };
+
+  const Bvh* bvh_;
+  const CandidateFilter* filter_;
+  int onchip_depth_;
+  Ray ray_;
+  bool any_hit_ = false;
+  CandidateCounters* cc_ = nullptr;
+  TraversalCounters* tc_ = nullptr;
+  std::optional<Tester> tester_;
+  std::optional<RayBoxTester> box_;
+  Hit best_;
+  float tmax_ = 0.0f;
+  BvhRef current_;
+  Entry stack_[kTraversalStackDepth];
+  int sp_ = 0, onchip_ = 0, refill_count_ = 0;
+  bool finished_ = false;
+  uint64_t rejected_ = 0, spills_ = 0, refills_ = 0;
+};
+
+}  // namespace vbsim

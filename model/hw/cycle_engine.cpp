@@ -1,0 +1,337 @@
+#include "hw/cycle_engine.h"
+
+#include <algorithm>
+#include <stdexcept>
+#include <vector>
+
+#include "datapath/bvh_stepper.h"
+#include "datapath/testers.h"
+#include "hw/bvh_address_map.h"
+#include "hw/unit_pipelines.h"
+
+namespace vbsim::hw {
+
+namespace {
+
+// Event keys: (cycle << kIdBits) | id, so a min-heap of plain integers orders
+// events by cycle, then by id (slots before the source; deterministic).
+constexpr int kIdBits = 21;
+constexpr uint64_t kIdMask = (uint64_t{1} << kIdBits) - 1;
+constexpr uint32_t kSourceId = static_cast<uint32_t>(kIdMask);
+
+struct Core {
+  explicit Core(const HwConfig& c) : box(c.box), tri(c.triangle), avoid(c.avoidance) {}
+  UnitPipelines box, tri, avoid;
+  std::vector<uint32_t> free_slots;  ///< global slot ids
+};
+
+/// Emission-time method operations acting on `tr` (each costs emission_op_cycles).
+uint32_t emission_ops(const SelfIntersectionMethod& m, const TraceRay& tr) {
+  const bool child = tr.parent_prim >= 0, shadow = tr.kind == RayKind::Shadow;
+  uint32_t ops = m.tmin;
+  if (child) ops += m.offset_normal + m.offset_direction + m.offset_adaptive + m.offset_errbound;
+  if (shadow && child) ops += m.shading_position || m.shading_position_always;
+  if (shadow) ops += m.reverse_shadow;
+  return ops;
+}
+
+template <class Tester>
+class Engine final : public CycleEngine {
+ public:
+  Engine(const HwConfig& cfg, FunctionalReplayer& replayer, const Bvh& bvh, MemoryPort& memory, RayFeed feed,
+         RayResultSink sink)
+      : cfg_(cfg), replayer_(replayer), memory_(memory), map_(bvh, cfg.address_base), feed_(std::move(feed)),
+        sink_(std::move(sink)),
+        avoidance_in_use_(replayer.options().method.validity_bit &&
+                          replayer.options().method.avoidance.policy != AvoidancePolicy::SignOnly) {
+    check_traversal_depth(bvh);
+    const uint32_t slots = cfg.cores * cfg.slots_per_core;
+    if (slots >= kSourceId) throw std::runtime_error("hw: too many slots");
+    cores_.reserve(cfg.cores);
+    for (uint32_t c = 0; c < cfg.cores; ++c) {
+      cores_.emplace_back(cfg);
+      for (uint32_t s = cfg.slots_per_core; s-- > 0;) cores_.back().free_slots.push_back(c * cfg.slots_per_core + s);
+    }
+    slots_.reserve(slots);
+    for (uint32_t i = 0; i < slots; ++i)
+      slots_.push_back(std::make_unique<Slot>(bvh, replayer.filter(), static_cast<int>(cfg.stack_depth)));
+    counters_.latency_histogram.assign(cfg.latency_buckets, 0);
+    start_emission(0);
+  }
+
+  void advance(uint64_t limit) override {
+    while (!events_.empty() && !stopped_) {
+      const uint64_t key = events_.front();
+      const uint64_t at = key >> kIdBits;
+      if (at >= limit) return;
+      // The handled event stays at the top until the handler's first new
+      // event replaces it (one sift instead of a pop and a push).
+      replace_top_ = true;
+      const uint32_t id = static_cast<uint32_t>(key & kIdMask);
+      if (id == kSourceId) source_ready(at);
+      else step(id, at);
+      if (replace_top_) pop_top();
+    }
+  }
+  bool finished() const override { return stopped_ || events_.empty(); }
+  uint64_t next_event_cycle() const override { return events_.empty() ? 0 : events_.front() >> kIdBits; }
+  void stop() override { stopped_ = true; }
+  bool stopped() const override { return stopped_; }
+  const HwCounters& counters() const override { return counters_; }
+  uint64_t rays_in_flight() const override { return in_flight_; }
+  void set_timeline_window(uint64_t first, uint64_t cycles, std::vector<TimelineEvent>* out) override {
+    tl_first_ = first;
+    tl_end_ = first + cycles;
+    timeline_ = out;
+  }
+
+ private:
+  struct Slot {
+    Slot(const Bvh& bvh, const CandidateFilter& filter, int depth) : stepper(bvh, filter, depth) {}
+    BvhStepper<Tester> stepper;
+    TraceRay tr;
+    EmittedRay er;
+    StepRequest pending;
+    uint64_t dispatched = 0;
+  };
+
+  // ---- the event queue: a binary min-heap of keys in events_ ----
+
+  void schedule(uint64_t at, uint32_t id) {
+    const uint64_t key = (at << kIdBits) | id;
+    if (replace_top_) {
+      replace_top_ = false;
+      sift_down(key);
+      return;
+    }
+    size_t i = events_.size();
+    events_.push_back(key);
+    while (i > 0 && events_[(i - 1) / 2] > key) {
+      events_[i] = events_[(i - 1) / 2];
+      i = (i - 1) / 2;
+    }
+    events_[i] = key;
+  }
+  void pop_top() {
+    replace_top_ = false;
+    const uint64_t last = events_.back();
+    events_.pop_back();
+    if (!events_.empty()) sift_down(last);
+  }
+  /// Puts `key` at the top and restores the heap order below it.
+  void sift_down(uint64_t key) {
+    const size_t n = events_.size();
+    size_t i = 0;
+    for (;;) {
+      size_t c = 2 * i + 1;
+      if (c >= n) break;
+      if (c + 1 < n && events_[c + 1] < events_[c]) ++c;
+      if (events_[c] >= key) break;
+      events_[i] = events_[c];
+      i = c;
+    }
+    events_[i] = key;
+  }
+
+  void record(const char* name, uint32_t id, uint64_t start, uint64_t end) {
+    if (!timeline_ || start < tl_first_ || start >= tl_end_) return;
+    timeline_->push_back({name, id / cfg_.slots_per_core, id % cfg_.slots_per_core, start, end, slots_[id]->tr.id});
+  }
+
+  // ---- ray source and dispatcher ----
+
+  /// The source starts emitting the next trace ray at cycle `at`.
+  void start_emission(uint64_t at) {
+    if (!feed_(next_tr_)) return;  // end of the trace
+    next_er_ = replayer_.emit(next_tr_);
+    uint64_t cost = cfg_.source.issue_interval;
+    if (next_tr_.sign < 0 && next_tr_.parent_prim >= 0) {
+      cost += cfg_.source.sign_bit_cycles;
+      ++counters_.sign_bits_computed;
+    }
+    const uint32_t ops = emission_ops(replayer_.options().method, next_tr_);
+    counters_.emission_ops += ops;
+    cost += uint64_t{ops} * cfg_.source.emission_op_cycles;
+    counters_.source_busy_cycles += cost;
+    schedule(at + cost, kSourceId);
+  }
+
+  /// The emitted ray is ready at `at`: dispatch it, or hold it until a slot frees.
+  void source_ready(uint64_t at) {
+    Core* core = pick_core();
+    if (!core) {
+      blocked_ = true;
+      blocked_since_ = at;
+      return;
+    }
+    dispatch(*core, at);
+    start_emission(at);
+  }
+
+  Core* pick_core() {
+    const uint32_t n = cfg_.cores;
+    if (cfg_.dispatch == DispatchPolicy::RoundRobin) {
+      for (uint32_t k = 0; k < n; ++k) {
+        const uint32_t c = (rr_next_ + k) % n;
+        if (!cores_[c].free_slots.empty()) {
+          rr_next_ = (c + 1) % n;
+          return &cores_[c];
+        }
+      }
+      return nullptr;
+    }
+    Core* best = nullptr;
+    for (Core& c : cores_)
+      if (!c.free_slots.empty() && (!best || c.free_slots.size() > best->free_slots.size())) best = &c;
+    return best;
+  }
+
+  void dispatch(Core& core, uint64_t at) {
+    const uint32_t id = core.free_slots.back();
+    core.free_slots.pop_back();
+    ++in_flight_;
+    Slot& s = *slots_[id];
+    s.tr = next_tr_;
+    s.er = next_er_;
+    s.dispatched = at;
+    KindStats& ks = replayer_.stats().by_kind[static_cast<int>(s.tr.kind)];
+    s.pending = s.stepper.begin(s.er.ray, replayer_.any_hit(s.tr, s.er), ks.candidates, ks.traversal);
+    const uint64_t issue = core.box.issue(at);  // the root box test: bounds latched with the ray
+    record("box", id, issue, issue + core.box.latency());
+    schedule(issue + core.box.latency(), id);
+  }
+
+  // ---- a slot's steps ----
+
+  void step(uint32_t id, uint64_t now) {
+    Slot& s = *slots_[id];
+    Core& core = cores_[id / cfg_.slots_per_core];
+    const int core_index = static_cast<int>(id / cfg_.slots_per_core);
+    switch (s.pending.kind) {
+      case StepRequest::Node: {
+        const uint64_t ready = memory_.read(core_index, map_.node(s.pending.index), BvhAddressMap::kNodeBytes, now);
+        ++counters_.node_fetches;
+        counters_.memory_wait_cycles += ready - now;
+        const uint64_t issue = core.box.issue(ready);
+        const uint64_t end = issue + core.box.latency();
+        record("node", id, now, end);
+        s.pending = s.stepper.node_step();
+        schedule(end, id);
+        return;
+      }
+      case StepRequest::Leaf: {
+        const uint32_t first = s.pending.index, count = s.pending.count;
+        const uint64_t ready = memory_.read(core_index, map_.triangle(first), count * BvhAddressMap::kTriangleBytes, now);
+        ++counters_.leaf_fetches;
+        counters_.memory_wait_cycles += ready - now;
+        uint64_t end = ready, next_ready = ready;
+        for (uint32_t i = 0; i < count; ++i) {
+          const uint64_t issue = core.tri.issue(next_ready);
+          next_ready = issue + 1;  // a slot hands its pipelines one triangle per cycle
+          const uint64_t result = issue + core.tri.latency();
+          end = std::max(end, result);
+          const TriangleStepOutcome out = s.stepper.triangle_step(first + i);
+          if (out.suspect && avoidance_in_use_) {
+            const uint64_t a = core.avoid.issue(result);
+            ++counters_.avoidance_ops_by_kind[static_cast<int>(s.tr.kind)];
+            record("avoidance", id, a, a + core.avoid.latency());
+            end = std::max(end, a + core.avoid.latency());
+          }
+          if (out.stop) break;
+        }
+        record("leaf", id, now, end);
+        s.pending = s.stepper.leaf_done();
+        schedule(end, id);
+        return;
+      }
+      case StepRequest::Refill: {
+        const uint64_t ready = memory_.read(core_index, map_.stack_entry(id, s.pending.index),
+                                            s.pending.count * BvhAddressMap::kStackEntryBytes, now);
+        ++counters_.refill_reads;
+        counters_.refill_wait_cycles += ready - now;
+        record("refill", id, now, ready);
+        s.pending = s.stepper.refilled();
+        schedule(ready, id);
+        return;
+      }
+      case StepRequest::Done:
+        finish(id, core, now);
+        return;
+    }
+  }
+
+  void finish(uint32_t id, Core& core, uint64_t now) {
+    Slot& s = *slots_[id];
+    const RayOutcome out = replayer_.conclude(s.tr, s.er, s.stepper.hit(), s.stepper.rejected());
+    if (sink_) sink_(s.tr, out, now);
+    HwCounters& c = counters_;
+    const uint64_t latency = now - s.dispatched;
+    c.slot_cycles += latency;
+    c.latency_min = c.rays == 0 ? latency : std::min(c.latency_min, latency);
+    c.latency_max = std::max(c.latency_max, latency);
+    const uint64_t bucket = std::min<uint64_t>(latency / cfg_.latency_bucket_cycles, c.latency_histogram.size() - 1);
+    ++c.latency_histogram[bucket];
+    ++c.rays;
+    c.cycles = now;
+    c.spills += s.stepper.spills();
+    update_unit_totals();
+    --in_flight_;
+    core.free_slots.push_back(id);
+    if (blocked_) {  // the source's held ray takes a slot now
+      blocked_ = false;
+      c.no_free_slot_cycles += now - blocked_since_;
+      dispatch(*pick_core(), now);
+      start_emission(now);
+    }
+  }
+
+  void update_unit_totals() {
+    HwCounters& c = counters_;
+    c.box = c.triangle = c.avoidance = UnitCounters{};
+    for (const Core& core : cores_) {
+      c.box.ops += core.box.ops();
+      c.box.wait_cycles += core.box.wait_cycles();
+      c.triangle.ops += core.tri.ops();
+      c.triangle.wait_cycles += core.tri.wait_cycles();
+      c.avoidance.ops += core.avoid.ops();
+      c.avoidance.wait_cycles += core.avoid.wait_cycles();
+    }
+  }
+
+  const HwConfig cfg_;
+  FunctionalReplayer& replayer_;
+  MemoryPort& memory_;
+  BvhAddressMap map_;
+  RayFeed feed_;
+  RayResultSink sink_;
+  bool avoidance_in_use_;
+  std::vector<Core> cores_;
+  std::vector<std::unique_ptr<Slot>> slots_;
+  std::vector<uint64_t> events_;
+  bool replace_top_ = false;
+  TraceRay next_tr_;
+  EmittedRay next_er_;
+  bool blocked_ = false, stopped_ = false;
+  uint64_t blocked_since_ = 0, in_flight_ = 0;
+  uint32_t rr_next_ = 0;
+  HwCounters counters_;
+  std::vector<TimelineEvent>* timeline_ = nullptr;
+  uint64_t tl_first_ = 0, tl_end_ = 0;
+};
+
+}  // namespace
+
+std::unique_ptr<CycleEngine> make_cycle_engine(const HwConfig& cfg, FunctionalReplayer& replayer, const Bvh& bvh,
+                                               MemoryPort& memory, RayFeed feed, RayResultSink sink) {
+  switch (replayer.options().tester) {
+    case TesterKind::MollerTrumbore:
+      return std::make_unique<Engine<MollerTrumboreTester>>(cfg, replayer, bvh, memory, std::move(feed),
+                                                            std::move(sink));
+    case TesterKind::ThreeHalfPlane:
+    default:
+      return std::make_unique<Engine<ThreeHalfPlaneTester>>(cfg, replayer, bvh, memory, std::move(feed),
+                                                            std::move(sink));
+  }
+}
+
+}  // namespace vbsim::hw

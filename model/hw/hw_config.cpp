@@ -1,0 +1,177 @@
+#include "hw/hw_config.h"
+
+#include "replay/config_fields.h"
+
+namespace vbsim::hw {
+
+namespace {
+
+using config_fields::fail;
+using config_fields::Fields;
+
+constexpr uint32_t kMaxCount = 1u << 20;
+
+std::string preset_path(const std::string& name) { return std::string(VBSIM_PRESETS_DIR) + "/" + name + ".json"; }
+
+void read_unit(Fields& parent, const std::string& key, UnitConfig& u) {
+  if (const auto* v = parent.get(key)) {
+    Fields f(*v, parent.file(), parent.path(key));
+    f.integer("count", u.count, 1, 64);
+    f.integer("latency", u.latency, 1, 100000);
+    f.integer("issue_interval", u.issue_interval, 1, 100000);
+  }
+}
+
+void read_cache(Fields& parent, const std::string& key, CacheConfig& c) {
+  if (const auto* v = parent.get(key)) {
+    Fields f(*v, parent.file(), parent.path(key));
+    f.integer("size_bytes", c.size_bytes, 64, 1u << 31);
+    f.integer("ways", c.ways, 1, 1024);
+    f.integer("line_bytes", c.line_bytes, 16, 4096);
+    f.integer("hit_latency", c.hit_latency, 0, 100000);
+    f.integer("mshrs", c.mshrs, 1, 4096);
+  }
+}
+
+void check_cache(const std::string& file, const std::string& field, const CacheConfig& c) {
+  const auto pow2 = [](uint32_t x) { return x != 0 && (x & (x - 1)) == 0; };
+  if (!pow2(c.line_bytes)) fail(file, field + ".line_bytes", "must be a power of two");
+  if (c.size_bytes % (static_cast<uint64_t>(c.ways) * c.line_bytes) != 0)
+    fail(file, field + ".size_bytes", "must be a multiple of ways * line_bytes");
+  if (!pow2(c.size_bytes / (c.ways * c.line_bytes)))
+    fail(file, field + ".size_bytes", "must give a power-of-two number of sets (size_bytes / (ways * line_bytes))");
+}
+
+void read_memory(Fields& parent, MemoryConfig& m) {
+  const auto* v = parent.get("memory");
+  if (!v) return;
+  const std::string field = parent.path("memory");
+  Fields f(*v, parent.file(), field);
+  f.boolean("ideal", m.ideal);
+  f.integer("ideal_latency", m.ideal_latency, 1, 100000);
+  read_cache(f, "l1", m.l1);
+  read_cache(f, "l2", m.l2);
+  f.integer("dram_latency", m.dram_latency, 1, 1000000);
+  f.number("dram_bytes_per_cycle", m.dram_bytes_per_cycle);
+  if (!(m.dram_bytes_per_cycle > 0 && m.dram_bytes_per_cycle <= 4096))
+    fail(parent.file(), field + ".dram_bytes_per_cycle", "must be in (0, 4096]");
+  f.integer("dram_max_outstanding", m.dram_max_outstanding, 1, 65536);
+  check_cache(parent.file(), field + ".l1", m.l1);
+  check_cache(parent.file(), field + ".l2", m.l2);
+}
+
+bool parse_dispatch(const std::string& s, DispatchPolicy& out) {
+  if (s == "round-robin") out = DispatchPolicy::RoundRobin;
+  else if (s == "least-loaded") out = DispatchPolicy::LeastLoaded;
+  else return false;
+  return true;
+}
+
+}  // namespace
+
+const char* dispatch_policy_name(DispatchPolicy p) {
+  return p == DispatchPolicy::RoundRobin ? "round-robin" : "least-loaded";
+}
+
+std::vector<std::string> preset_names() { return {"small", "large"}; }
+
+HwConfig load_preset(const std::string& name, const std::string& origin) {
+  bool known = false;
+  for (const std::string& n : preset_names()) known |= n == name;
+  if (!known) fail(origin, "hw.preset", "unknown preset '" + name + "' (presets: small, large)");
+  const std::string path = preset_path(name);
+  HwConfig cfg;
+  nlohmann::json j = read_config_json(path);
+  if (j.is_object()) j.erase("preset");  // a preset file names itself; no recursion
+  apply_hw_config(j, path, cfg);
+  cfg.preset = name;
+  return cfg;
+}
+
+void apply_hw_config(const nlohmann::json& j, const std::string& file, HwConfig& cfg) {
+  Fields f(j, file, "hw");
+  if (const auto* p = f.get("preset")) {
+    if (!p->is_string()) fail(file, "hw.preset", "must be a string");
+    cfg = load_preset(p->get<std::string>(), file);
+  }
+  f.number("clock_mhz", cfg.clock_mhz);
+  if (!(cfg.clock_mhz >= 1 && cfg.clock_mhz <= 100000)) fail(file, "hw.clock_mhz", "must be in [1, 100000] MHz");
+  f.integer("cores", cfg.cores, 1, 4096);
+  f.integer("slots_per_core", cfg.slots_per_core, 1, 4096);
+  if (static_cast<uint64_t>(cfg.cores) * cfg.slots_per_core > kMaxCount)
+    fail(file, "hw.slots_per_core", "cores * slots_per_core must be at most 1048576");
+  f.integer("stack_depth", cfg.stack_depth, 1, 128);
+  f.name("dispatch", [&](const std::string& s) { return parse_dispatch(s, cfg.dispatch); });
+  if (const auto* a = f.get("address_base")) {
+    if (!a->is_number_unsigned() || a->get<uint64_t>() % 64 != 0 || a->get<uint64_t>() >= (1ull << 48))
+      fail(file, "hw.address_base", "must be a multiple of 64 below 2^48");
+    cfg.address_base = a->get<uint64_t>();
+  }
+  if (const auto* s = f.get("source")) {
+    Fields fs(*s, file, "hw.source");
+    fs.integer("issue_interval", cfg.source.issue_interval, 1, 100000);
+    fs.integer("sign_bit_cycles", cfg.source.sign_bit_cycles, 0, 100000);
+    fs.integer("emission_op_cycles", cfg.source.emission_op_cycles, 0, 100000);
+  }
+  read_unit(f, "box", cfg.box);
+  read_unit(f, "triangle", cfg.triangle);
+  read_unit(f, "avoidance", cfg.avoidance);
+  read_memory(f, cfg.memory);
+  if (const auto* s = f.get("sim")) {
+    Fields fs(*s, file, "hw.sim");
+    fs.integer("quantum_cycles", cfg.quantum_cycles, 1, 1u << 30);
+    fs.integer("latency_bucket_cycles", cfg.latency_bucket_cycles, 1, 1u << 20);
+    fs.integer("latency_buckets", cfg.latency_buckets, 1, 4096);
+  }
+}
+
+HwConfig resolve_hw_config(const std::string& path, const std::string& preset) {
+  nlohmann::json hw = nlohmann::json::object();
+  if (!path.empty()) {
+    const nlohmann::json j = read_config_json(path);
+    if (j.is_object() && j.contains("hw")) hw = j["hw"];
+  }
+  if (!preset.empty() && hw.is_object()) hw.erase("preset");  // the command line wins
+  HwConfig cfg = load_preset(preset.empty() ? "small" : preset, "command line: option '--preset'");
+  apply_hw_config(hw, path.empty() ? "command line" : path, cfg);
+  return cfg;
+}
+
+nlohmann::json hw_config_json(const HwConfig& c) {
+  const auto unit = [](const UnitConfig& u) {
+    return nlohmann::json{{"count", u.count}, {"latency", u.latency}, {"issue_interval", u.issue_interval}};
+  };
+  const auto cache = [](const CacheConfig& k) {
+    return nlohmann::json{{"size_bytes", k.size_bytes}, {"ways", k.ways},   {"line_bytes", k.line_bytes},
+                          {"hit_latency", k.hit_latency}, {"mshrs", k.mshrs}};
+  };
+  const MemoryConfig& m = c.memory;
+  return {{"preset", c.preset},
+          {"clock_mhz", c.clock_mhz},
+          {"cores", c.cores},
+          {"slots_per_core", c.slots_per_core},
+          {"stack_depth", c.stack_depth},
+          {"dispatch", dispatch_policy_name(c.dispatch)},
+          {"address_base", c.address_base},
+          {"source",
+           {{"issue_interval", c.source.issue_interval},
+            {"sign_bit_cycles", c.source.sign_bit_cycles},
+            {"emission_op_cycles", c.source.emission_op_cycles}}},
+          {"box", unit(c.box)},
+          {"triangle", unit(c.triangle)},
+          {"avoidance", unit(c.avoidance)},
+          {"memory",
+           {{"ideal", m.ideal},
+            {"ideal_latency", m.ideal_latency},
+            {"l1", cache(m.l1)},
+            {"l2", cache(m.l2)},
+            {"dram_latency", m.dram_latency},
+            {"dram_bytes_per_cycle", m.dram_bytes_per_cycle},
+            {"dram_max_outstanding", m.dram_max_outstanding}}},
+          {"sim",
+           {{"quantum_cycles", c.quantum_cycles},
+            {"latency_bucket_cycles", c.latency_bucket_cycles},
+            {"latency_buckets", c.latency_buckets}}}};
+}
+
+}  // namespace vbsim::hw

@@ -1,0 +1,68 @@
+// HwConfig: every knob of the cycle-level model (docs/config.md documents each:
+// unit, default, meaning). Read from the `hw` object of a configuration file,
+// on top of a preset (model/hw/presets/NAME.json); errors name the JSON field.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "hw/memory_port.h"
+
+namespace vbsim::hw {
+
+/// `count` identical pipelines of one kind per core.
+struct UnitConfig {
+  uint32_t count = 1;           ///< pipelines of this kind per core
+  uint32_t latency = 1;         ///< cycles from issue to result
+  uint32_t issue_interval = 1;  ///< cycles between two issues into one pipeline
+};
+
+/// The ray source: the ray-emission interface in front of the dispatcher.
+struct SourceConfig {
+  uint32_t issue_interval = 1;      ///< cycles per ray emitted, at least
+  uint32_t sign_bit_cycles = 1;     ///< extra cycles when the trace omits a child's sign bit
+  uint32_t emission_op_cycles = 4;  ///< extra cycles per emission-time method acting on a ray
+};
+
+enum class DispatchPolicy { RoundRobin, LeastLoaded };
+const char* dispatch_policy_name(DispatchPolicy p);
+
+struct HwConfig {
+  std::string preset = "small";  ///< the preset these values started from
+  double clock_mhz = 500;
+  uint32_t cores = 4;
+  uint32_t slots_per_core = 16;
+  uint32_t stack_depth = 16;     ///< on-chip traversal stack entries per slot
+  DispatchPolicy dispatch = DispatchPolicy::LeastLoaded;
+  uint64_t address_base = 0;     ///< byte address of node 0 (multiple of 64)
+  SourceConfig source;
+  UnitConfig box{1, 8, 1};
+  UnitConfig triangle{1, 20, 1};
+  UnitConfig avoidance{1, 6, 1};
+  MemoryConfig memory;
+  uint32_t quantum_cycles = 256;        ///< sim: most cycles the engine runs ahead of SystemC time
+  uint32_t latency_bucket_cycles = 32;  ///< sim: width of a latency histogram bucket
+  uint32_t latency_buckets = 64;        ///< sim: buckets (the last one also counts longer latencies)
+};
+
+/// Names of the committed presets.
+std::vector<std::string> preset_names();
+/// The preset `name` (small, large). Throws ConfigError naming `origin` and the
+/// preset when it is unknown or its file is broken.
+HwConfig load_preset(const std::string& name, const std::string& origin);
+
+/// Applies the fields present in `j` (an `hw` object) onto `cfg`; a `preset`
+/// field first resets `cfg` to that preset. Throws ConfigError "FILE: field
+/// 'hw.x': reason" on a wrong type, unknown field or out-of-range value.
+void apply_hw_config(const nlohmann::json& j, const std::string& file, HwConfig& cfg);
+
+/// The hardware configuration for a run: preset `preset` (empty: the `hw.preset`
+/// of the file, else small), then the `hw` object of the config file `path` (may be empty).
+HwConfig resolve_hw_config(const std::string& path, const std::string& preset);
+
+/// The configuration as JSON, every field (the form presets and `config.hw` use).
+nlohmann::json hw_config_json(const HwConfig& cfg);
+
+}  // namespace vbsim::hw

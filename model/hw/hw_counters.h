@@ -1,0 +1,36 @@
+// HwCounters: what the cycle engine counted in one run (cycles, unit
+// operations, waits by cause, stack overflow, per-ray latency); hw_stats.h
+// turns them into the `hw` section of the stats JSON and the human table.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "datapath/ray.h"
+
+namespace vbsim::hw {
+
+struct UnitCounters {
+  uint64_t ops = 0;          ///< operations issued (all cores)
+  uint64_t wait_cycles = 0;  ///< cycles operations waited for a free pipeline ("pipeline full")
+};
+
+struct HwCounters {
+  uint64_t cycles = 0;            ///< cycle at which the last ray finished
+  uint64_t rays = 0;              ///< rays finished
+  UnitCounters box, triangle, avoidance;
+  std::array<uint64_t, kRayKindCount> avoidance_ops_by_kind{};  ///< suspects sent to the avoidance unit
+  uint64_t node_fetches = 0, leaf_fetches = 0, refill_reads = 0;
+  uint64_t memory_wait_cycles = 0;  ///< node and leaf fetches: cycles from request to data
+  uint64_t refill_wait_cycles = 0;  ///< stack refill reads: cycles from request to data
+  uint64_t spills = 0;              ///< stack entries pushed past the on-chip depth
+  uint64_t no_free_slot_cycles = 0; ///< cycles the source held a ready ray because no slot was free
+  uint64_t source_busy_cycles = 0;  ///< cycles the source spent emitting (interval, sign bits, emission ops)
+  uint64_t sign_bits_computed = 0;  ///< rays whose sign bit the source computed
+  uint64_t emission_ops = 0;        ///< emission-time method operations charged
+  uint64_t slot_cycles = 0;         ///< sum over rays of cycles in a slot (dispatch to result)
+  std::vector<uint64_t> latency_histogram;  ///< rays per latency bucket (the last one open-ended)
+  uint64_t latency_min = 0, latency_max = 0;
+};
+
+}  // namespace vbsim::hw

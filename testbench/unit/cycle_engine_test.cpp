@@ -1,0 +1,218 @@
+// The cycle-level model: exact cycle counts on hand-built BVHs (one core, one
+// slot, ideal memory), throughput against the analytic bound, and the
+// SystemC clock agreeing with the engine's cycle count.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <map>
+#include <vector>
+
+#include "bench/functional_bench.h"
+#include "hw/cycle_replay.h"
+#include "replay/replay_run.h"
+#include "trace/trace_file.h"
+
+using namespace vbsim;
+using namespace vbsim::hw;
+
+namespace {
+
+struct Finished {
+  int32_t prim;
+  uint64_t cycle;
+};
+
+struct Run {
+  CycleRunResult result;
+  std::map<int64_t, Finished> rays;  ///< by ray id
+};
+
+Run run_rays(const std::vector<TraceRay>& rays, const Scene& scene, const Bvh& bvh, const ReplayOptions& opt,
+             const HwConfig& cfg) {
+  Run run;
+  size_t next = 0;
+  const RayFeed feed = [&](TraceRay& tr) {
+    if (next == rays.size()) return false;
+    tr = rays[next++];
+    return true;
+  };
+  const RayResultSink sink = [&](const TraceRay& tr, const RayOutcome& out, uint64_t cycle) {
+    run.rays[tr.id] = {out.hit.prim, cycle};
+  };
+  CycleRunOptions options;
+  options.track_parents = false;
+  run.result = run_cycle_replay(feed, scene, bvh, opt, cfg, sink, options);
+  return run;
+}
+
+/// One core, one slot, ideal memory of latency `mem`; box, triangle and
+/// avoidance latencies lb, lt, la; one pipeline each, issue interval 1.
+HwConfig one_slot(uint32_t mem, uint32_t lb, uint32_t lt, uint32_t la) {
+  HwConfig c;
+  c.cores = 1;
+  c.slots_per_core = 1;
+  c.memory.ideal = true;
+  c.memory.ideal_latency = mem;
+  c.box = {1, lb, 1};
+  c.triangle = {1, lt, 1};
+  c.avoidance = {1, la, 1};
+  c.source = {1, 0, 0};
+  return c;
+}
+
+Triangle floor_at(float z) { return Triangle{{0, 0, z}, {1, 0, z}, {0, 1, z}}; }
+
+Bounds3f box_of(float zlo, float zhi) {
+  Bounds3f b;
+  b.lo = {0, 0, zlo};
+  b.hi = {1, 1, zhi};
+  return b;
+}
+
+// Three floors: prim 0 at z = 0, prim 1 at z = -1, prim 2 at z = -2. By hand:
+// node 0 = {node 1 (z -1..0), leaf [prim 2]}, node 1 = {leaf [prim 0], leaf [prim 1]}.
+struct ThreeFloors {
+  Scene scene = make_scene({floor_at(0), floor_at(-1), floor_at(-2)});
+  Bvh bvh;
+  ThreeFloors() {
+    bvh.tris = {{scene.triangles[0], 0}, {scene.triangles[1], 1}, {scene.triangles[2], 2}};
+    bvh.nodes.resize(2);
+    bvh.nodes[0].set_child(0, box_of(-1, 0), {1, 0});
+    bvh.nodes[0].set_child(1, box_of(-2, -2), {2, 1});
+    bvh.nodes[0].axis = 2;
+    bvh.nodes[1].set_child(0, box_of(0, 0), {0, 1});
+    bvh.nodes[1].set_child(1, box_of(-1, -1), {1, 1});
+    bvh.nodes[1].axis = 2;
+    bvh.root = {0, 0};
+    bvh.root_bounds = box_of(-2, 0);
+    bvh.depth = 3;
+  }
+};
+
+TraceRay down_from(int64_t id, float z) {
+  TraceRay r;
+  r.id = id;
+  r.o = {0.25f, 0.25f, z};
+  r.d = {0, 0, -1};
+  return r;
+}
+
+}  // namespace
+
+TEST_CASE("cycle count of each ray equals the hand-computed sum on a three-node BVH", "[cycle]") {
+  const ThreeFloors f;
+  const uint32_t M = 3, Lb = 5, Lt = 11, La = 7;
+  ReplayOptions opt;
+  std::string err;
+  REQUIRE(parse_method("validity-bit", opt.method, err));
+  // Ray A, a camera ray from z = 1: root box, node 0, node 1, leaf [prim 0]:
+  // a hit at t = 1, front face; sign 0, so no suspect. Leaves [prim 1] and
+  // [prim 2] were pushed but are farther than the hit: popped and skipped.
+  TraceRay a = down_from(1, 1.0f);
+  // Ray B leaves prim 0 (origin 1e-7 above it, sign bit 1 given): prim 0 is a
+  // suspect at t = 1e-7 and the avoidance unit rejects it (closer than the
+  // exponent epsilon 2^-17); the search goes on to leaf [prim 1], another
+  // suspect, which the unit accepts (1 away from the plane).
+  TraceRay b = down_from(2, 1e-7f);
+  b.parent = 1;
+  b.parent_prim = 0;
+  b.kind = RayKind::Reflect;
+  b.sign = 1;
+  const Run run = run_rays({a, b}, f.scene, f.bvh, opt, one_slot(M, Lb, Lt, La));
+  REQUIRE(run.rays.at(1).prim == 0);
+  REQUIRE(run.rays.at(2).prim == 1);
+
+  // The source emits A in 1 cycle (issue interval 1): dispatched at cycle 1.
+  const uint64_t latency_a = Lb            // root box test
+                             + (M + Lb)    // node 0: fetch, both child boxes
+                             + (M + Lb)    // node 1
+                             + (M + Lt);   // leaf [prim 0]: fetch, triangle test
+  const uint64_t finish_a = 1 + latency_a;
+  // B was emitted at cycle 2 and waited for the only slot: dispatched when A finished.
+  const uint64_t latency_b = Lb + (M + Lb) + (M + Lb)
+                             + (M + Lt + La)   // leaf [prim 0]: suspect, rejected
+                             + (M + Lt + La);  // leaf [prim 1]: suspect, accepted
+  CHECK(run.rays.at(1).cycle == finish_a);
+  CHECK(run.rays.at(2).cycle == finish_a + latency_b);
+  const HwCounters& c = run.result.counters;
+  CHECK(c.cycles == finish_a + latency_b);
+  CHECK(c.box.ops == 6);
+  CHECK(c.triangle.ops == 3);
+  CHECK(c.avoidance.ops == 2);
+  CHECK(c.no_free_slot_cycles == finish_a - 2);
+  CHECK(c.memory_wait_cycles == 7 * M);
+  CHECK(c.latency_min == latency_a);
+  CHECK(c.latency_max == latency_b);
+}
+
+TEST_CASE("a root leaf's triangle tests issue at the pipeline's issue interval", "[cycle]") {
+  // No nodes: the root is one leaf of three floors; the ray meets all three.
+  const Scene scene = make_scene({floor_at(0), floor_at(-1), floor_at(-2)});
+  Bvh bvh;
+  for (int i = 0; i < 3; ++i) bvh.tris.push_back({scene.triangles[i], static_cast<uint32_t>(i)});
+  bvh.root = {0, 3};
+  bvh.root_bounds = box_of(-2, 0);
+  bvh.depth = 1;
+  const uint32_t M = 4, Lb = 2, Lt = 9, interval = 3;
+  HwConfig cfg = one_slot(M, Lb, Lt, 1);
+  cfg.triangle.issue_interval = interval;
+  cfg.source.issue_interval = 5;  // the ray is dispatched at cycle 5
+  const Run run = run_rays({down_from(7, 1.0f)}, scene, bvh, ReplayOptions{}, cfg);
+  REQUIRE(run.rays.at(7).prim == 0);
+  // Root box, leaf fetch, then tests at R, R + 3, R + 6: the last result at R + 6 + Lt.
+  CHECK(run.rays.at(7).cycle == 5 + Lb + M + 2 * interval + Lt);
+  CHECK(run.result.counters.triangle.wait_cycles == 2 * (interval - 1));
+}
+
+TEST_CASE("SystemC time of a run is its cycle count times the clock period", "[cycle]") {
+  const ThreeFloors f;
+  HwConfig cfg = one_slot(2, 3, 4, 5);
+  cfg.clock_mhz = 250;  // 4000 ps
+  std::vector<TraceRay> rays;
+  for (int i = 0; i < 20; ++i) rays.push_back(down_from(i, 1.0f + i));
+  const uint32_t quantum = GENERATE(1u, 7u, 1000u);
+  cfg.quantum_cycles = quantum;
+  const Run run = run_rays(rays, f.scene, f.bvh, ReplayOptions{}, cfg);
+  const nlohmann::json& sc = run.result.hw["systemc"];
+  const uint64_t cycles = run.result.counters.cycles;
+  INFO("quantum " << quantum);
+  CHECK(cycles > 0);
+  CHECK(sc["cycles"].get<uint64_t>() == cycles);
+  CHECK(sc["end_ps"].get<double>() - sc["start_ps"].get<double>() == Approx(4000.0 * cycles));
+  CHECK(run.rays.size() == 20);
+  // The count does not depend on the quantum: 20 identical searches back to back.
+  CHECK(cycles == 20 * (run.result.counters.latency_max) + 1);
+}
+
+TEST_CASE("throughput with ideal memory is within 2 percent of the unit bound", "[cycle]") {
+  auto src = open_trace(std::string(VBSIM_SOURCE_DIR) + "/traces/bunny/paths.jsonl");
+  const SceneAndBvh sb = load_trace_scene(src->header());
+  const std::vector<TraceRay> rays = bench_rays(sb.scene, 24000, 3);
+  HwConfig cfg;
+  cfg.cores = 3;
+  cfg.slots_per_core = 64;
+  cfg.memory.ideal = true;
+  cfg.memory.ideal_latency = 10;
+  cfg.source = {1, 0, 0};
+  cfg.box = {GENERATE(1u, 2u), 6, 1};
+  cfg.triangle = {1, 15, GENERATE(1u, 3u)};
+  const Run run = run_rays(rays, sb.scene, sb.bvh, ReplayOptions{}, cfg);
+  const KindStats t = run.result.stats.total();
+  REQUIRE(t.rays == rays.size());
+  // Operations per ray from the functional counters: one box operation for
+  // the root box and one per node fetch (both child boxes), one triangle
+  // operation per triangle test. Bound, in rays per cycle:
+  //   min( 1 / source_interval,
+  //        cores * box.count / (box.issue_interval * box_ops_per_ray),
+  //        cores * triangle.count / (triangle.issue_interval * triangle_ops_per_ray) )
+  const double n = static_cast<double>(t.rays);
+  const double box_per_ray = (n + t.traversal.node_visits) / n;
+  const double tri_per_ray = t.traversal.triangle_tests / n;
+  const double bound = std::min({1.0 / cfg.source.issue_interval,
+                                 cfg.cores * cfg.box.count / (cfg.box.issue_interval * box_per_ray),
+                                 cfg.cores * cfg.triangle.count / (cfg.triangle.issue_interval * tri_per_ray)});
+  const double got = n / run.result.counters.cycles;
+  INFO("box ops/ray " << box_per_ray << " triangle ops/ray " << tri_per_ray << " bound " << bound << " got " << got);
+  CHECK(got <= bound * 1.0000001);
+  CHECK(got >= 0.98 * bound);
+}

@@ -1,0 +1,72 @@
+// The hardware configuration: presets load, fields apply, and every bad value
+// is an error naming its JSON field.
+#include <catch2/catch.hpp>
+
+#include <nlohmann/json.hpp>
+
+#include "hw/hw_config.h"
+#include "replay/replay_config.h"
+
+using namespace vbsim;
+using namespace vbsim::hw;
+
+TEST_CASE("presets load and round-trip through their JSON form", "[hwconfig]") {
+  for (const std::string& name : preset_names()) {
+    const HwConfig c = load_preset(name, "test");
+    CHECK(c.preset == name);
+    nlohmann::json j = hw_config_json(c);
+    HwConfig back;
+    apply_hw_config(j, "test", back);  // names the preset, then sets every field again
+    CHECK(hw_config_json(back) == j);
+  }
+  CHECK(load_preset("large", "t").cores > load_preset("small", "t").cores);
+}
+
+TEST_CASE("hw fields apply on top of a preset", "[hwconfig]") {
+  HwConfig c;
+  apply_hw_config(nlohmann::json::parse(R"({"preset": "large", "cores": 3, "box": {"latency": 9},
+                                            "memory": {"ideal": true, "l1": {"ways": 8}}})"),
+                  "f.json", c);
+  CHECK(c.preset == "large");
+  CHECK(c.cores == 3);
+  CHECK(c.box.latency == 9);
+  CHECK(c.box.count == load_preset("large", "t").box.count);
+  CHECK(c.memory.ideal);
+  CHECK(c.memory.l1.ways == 8);
+}
+
+TEST_CASE("bad hw values are errors naming the field", "[hwconfig]") {
+  const std::pair<const char*, const char*> cases[] = {
+      {R"({"cores": 0})", "field 'hw.cores'"},
+      {R"({"cores": 2.5})", "field 'hw.cores'"},
+      {R"({"clock_mhz": -1})", "field 'hw.clock_mhz'"},
+      {R"({"stack_depth": 129})", "field 'hw.stack_depth'"},
+      {R"({"dispatch": "random"})", "field 'hw.dispatch'"},
+      {R"({"preset": "huge"})", "field 'hw.preset'"},
+      {R"({"address_base": 100})", "field 'hw.address_base'"},
+      {R"({"box": {"latency": "x"}})", "field 'hw.box.latency'"},
+      {R"({"triangle": {"count": 0}})", "field 'hw.triangle.count'"},
+      {R"({"avoidance": {"issue_interval": 0}})", "field 'hw.avoidance.issue_interval'"},
+      {R"({"source": {"speed": 1}})", "field 'hw.source.speed'"},
+      {R"({"memory": {"ideal": 1}})", "field 'hw.memory.ideal'"},
+      {R"({"memory": {"l1": {"line_bytes": 48}}})", "field 'hw.memory.l1.line_bytes'"},
+      {R"({"memory": {"l2": {"size_bytes": 1000}}})", "field 'hw.memory.l2.size_bytes'"},
+      {R"({"memory": {"dram_bytes_per_cycle": 0}})", "field 'hw.memory.dram_bytes_per_cycle'"},
+      {R"({"memory": {"l3": {}}})", "field 'hw.memory.l3'"},
+      {R"({"sim": {"quantum_cycles": 0}})", "field 'hw.sim.quantum_cycles'"},
+      {R"({"cores": 4096, "slots_per_core": 4096})", "field 'hw.slots_per_core'"},
+      {R"({"bogus": true})", "field 'hw.bogus'"},
+  };
+  for (const auto& [text, field] : cases) {
+    INFO(text);
+    HwConfig c;
+    CHECK_THROWS_WITH(apply_hw_config(nlohmann::json::parse(text), "cfg.json", c),
+                      Catch::StartsWith("cfg.json: ") && Catch::Contains(field));
+  }
+}
+
+TEST_CASE("a replay config file may carry an hw object", "[hwconfig]") {
+  ReplayOptions opt;
+  CHECK_NOTHROW(apply_replay_config(nlohmann::json::parse(R"({"method": "primid", "hw": {"cores": 2}})"), "f", opt));
+  CHECK(opt.method.primid);
+}
