@@ -6,37 +6,8 @@
 
 namespace vbsim {
 
-FunctionalReplayer::FunctionalReplayer(const Scene& scene, const Bvh& bvh, const ReplayOptions& options)
-    : scene_(scene), bvh_(bvh), opt_(options), filter_(options.method) {
-  check_traversal_depth(bvh);
-}
-
-EmittedRay FunctionalReplayer::emit(const TraceRay& tr) {
-  const EmittedRay er = emit_ray(tr, scene_, opt_, track_parents_ ? &parents_ : nullptr);
-  if (track_parents_) parents_[tr.id] = {tr.o, tr.d};
-  return er;
-}
-
-RayOutcome FunctionalReplayer::replay(const TraceRay& tr) {
-  KindStats& ks = stats_.by_kind[static_cast<int>(tr.kind)];
-  const EmittedRay er = emit(tr);
-  const bool stop_at_any = any_hit(tr, er);
-  const uint64_t rejected_before = ks.candidates.rejected;
-  Hit hit;
-  switch (opt_.tester) {
-    case TesterKind::ThreeHalfPlane:
-      hit = closest_hit<ThreeHalfPlaneTester>(bvh_, er.ray, filter_, ks.candidates, ks.traversal, stop_at_any);
-      break;
-    case TesterKind::MollerTrumbore:
-      hit = closest_hit<MollerTrumboreTester>(bvh_, er.ray, filter_, ks.candidates, ks.traversal, stop_at_any);
-      break;
-  }
-  return conclude(tr, er, hit, ks.candidates.rejected - rejected_before);
-}
-
-RayOutcome FunctionalReplayer::conclude(const TraceRay& tr, const EmittedRay& er, const Hit& hit,
-                                        uint64_t rejected) {
-  KindStats& ks = stats_.by_kind[static_cast<int>(tr.kind)];
+RayOutcome conclude_ray(const TraceRay& tr, const EmittedRay& er, const Hit& hit, uint64_t rejected,
+                        const Scene& scene, const ParentRays* parents, KindStats& ks) {
   RayOutcome out;
   out.hit = hit;
   out.rejected = rejected;
@@ -51,14 +22,57 @@ RayOutcome FunctionalReplayer::conclude(const TraceRay& tr, const EmittedRay& er
   if (tr.has_expect) {
     out.scored = true;
     if (verdict_needs_exact(tr, out.answer)) {  // rational numbers only when needed
-      const ExactRay intended = intended_ray(tr, scene_, &parents_);
-      out.verdict = judge(tr, out.answer, scene_, &intended);
+      const ExactRay intended = intended_ray(tr, scene, parents);
+      out.verdict = judge(tr, out.answer, scene, &intended);
     } else {
-      out.verdict = judge(tr, out.answer, scene_, nullptr);
+      out.verdict = judge(tr, out.answer, scene, nullptr);
     }
   }
   ++ks.verdicts[static_cast<int>(out.verdict)];
   return out;
+}
+
+RayOutcome replay_one_ray(const TraceRay& tr, const Scene& scene, const Bvh& bvh,
+                          const ReplayOptions& opt, const CandidateFilter& filter,
+                          const ParentRays* parents, KindStats& ks) {
+  const EmittedRay er = emit_ray(tr, scene, opt, parents);
+  const bool any_hit = search_stops_at_any_hit(opt, tr, er);
+  const uint64_t rejected_before = ks.candidates.rejected;
+  Hit hit;
+  switch (opt.tester) {
+    case TesterKind::ThreeHalfPlane:
+      hit = closest_hit<ThreeHalfPlaneTester>(bvh, er.ray, filter, ks.candidates, ks.traversal, any_hit);
+      break;
+    case TesterKind::MollerTrumbore:
+      hit = closest_hit<MollerTrumboreTester>(bvh, er.ray, filter, ks.candidates, ks.traversal, any_hit);
+      break;
+  }
+  return conclude_ray(tr, er, hit, ks.candidates.rejected - rejected_before, scene, parents, ks);
+}
+
+FunctionalReplayer::FunctionalReplayer(const Scene& scene, const Bvh& bvh, const ReplayOptions& options)
+    : scene_(scene), bvh_(bvh), opt_(options), filter_(options.method) {
+  check_traversal_depth(bvh);
+}
+
+RayOutcome FunctionalReplayer::replay(const TraceRay& tr) {
+  KindStats& ks = stats_.by_kind[static_cast<int>(tr.kind)];
+  const RayOutcome out =
+      replay_one_ray(tr, scene_, bvh_, opt_, filter_, track_parents_ ? &parents_ : nullptr, ks);
+  if (track_parents_) parents_[tr.id] = {tr.o, tr.d};
+  return out;
+}
+
+EmittedRay FunctionalReplayer::emit(const TraceRay& tr) {
+  const EmittedRay er = emit_ray(tr, scene_, opt_, track_parents_ ? &parents_ : nullptr);
+  if (track_parents_) parents_[tr.id] = {tr.o, tr.d};
+  return er;
+}
+
+RayOutcome FunctionalReplayer::conclude(const TraceRay& tr, const EmittedRay& er, const Hit& hit,
+                                        uint64_t rejected) {
+  return conclude_ray(tr, er, hit, rejected, scene_, track_parents_ ? &parents_ : nullptr,
+                      stats_.by_kind[static_cast<int>(tr.kind)]);
 }
 
 }  // namespace vbsim

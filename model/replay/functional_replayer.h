@@ -29,6 +29,28 @@ struct RayOutcome {
   bool reversed = false;
 };
 
+/// Whether the search of `tr` (emitted as `er`) stops at the first accepted hit:
+/// shadow rays, unless reversed (which need the closest hit to tell the parent
+/// triangle from an occluder).
+inline bool search_stops_at_any_hit(const ReplayOptions& opt, const TraceRay& tr, const EmittedRay& er) {
+  return opt.any_hit_for_shadow && tr.kind == RayKind::Shadow && !er.reversed;
+}
+
+/// The outcome of a search that returned `hit` with `rejected` rejected
+/// candidates for `tr` (emitted as `er`): the method's answer and its verdict,
+/// counted into `ks`. `parents` (may be null) as for replay_one_ray.
+RayOutcome conclude_ray(const TraceRay& tr, const EmittedRay& er, const Hit& hit, uint64_t rejected,
+                        const Scene& scene, const ParentRays* parents, KindStats& ks);
+
+/// One ray through emission, the closest-hit search with `filter` (built from
+/// opt.method) and the verdict, counted into `ks`. `parents` (may be null) holds
+/// the rays seen before, for intended origins and ray-equation hit points.
+/// Depends on nothing but its arguments: the same ray and options give the same
+/// outcome whatever was replayed before.
+RayOutcome replay_one_ray(const TraceRay& tr, const Scene& scene, const Bvh& bvh,
+                          const ReplayOptions& opt, const CandidateFilter& filter,
+                          const ParentRays* parents, KindStats& ks);
+
 class FunctionalReplayer {
  public:
   /// `scene` and `bvh` must outlive the replayer. Throws when the BVH is too deep.
@@ -45,7 +67,7 @@ class FunctionalReplayer {
   EmittedRay emit(const TraceRay& tr);
   /// Whether the search of `tr` (emitted as `er`) stops at the first accepted hit.
   bool any_hit(const TraceRay& tr, const EmittedRay& er) const {
-    return opt_.any_hit_for_shadow && tr.kind == RayKind::Shadow && !er.reversed;
+    return search_stops_at_any_hit(opt_, tr, er);
   }
   /// The outcome of a search that returned `hit` with `rejected` rejected
   /// candidates; adds the ray to the statistics.

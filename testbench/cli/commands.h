@@ -15,6 +15,9 @@ void add_bench_command(CLI::App& app);
 void add_oracle_command(CLI::App& app);
 void add_gen_command(CLI::App& app);
 void add_watertight_command(CLI::App& app);
+void add_score_command(CLI::App& app);
+void add_scenarios_command(CLI::App& app);
+void add_fit_command(CLI::App& app);
 void add_render_command(CLI::App& app);
 
 /// The main job: replay of the default trace with validity-bit, printed summary.

@@ -21,6 +21,9 @@ int sc_main(int argc, char** argv) {
   add_oracle_command(app);
   add_gen_command(app);
   add_watertight_command(app);
+  add_score_command(app);
+  add_scenarios_command(app);
+  add_fit_command(app);
   add_render_command(app);
   try {
     app.parse(argc, argv);

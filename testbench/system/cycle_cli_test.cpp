@@ -8,13 +8,13 @@
 
 using namespace vbsim::test;
 
-TEST_CASE("cycle mode reports a memory model this build lacks and a bad hw field cleanly", "[system][cycle]") {
+TEST_CASE("cycle mode reports an impossible cache and a bad hw field cleanly", "[system][cycle]") {
   const std::string trace = source_dir() + "/traces/bunny/paths.jsonl";
   const auto dir = scratch_dir("cycle_errors");
-  write_file(dir / "real.json", R"({"hw": {"memory": {"ideal": false}}})");
+  write_file(dir / "real.json", R"({"hw": {"memory": {"ideal": false, "l1": {"ways": 512}}}})");
   RunResult r = run_vbsim("replay " + trace + " --mode cycle --config " + (dir / "real.json").string());
   CHECK(r.exit_code == 2);
-  CHECK_THAT(r.output, Catch::StartsWith("vbsim: error: memory:"));
+  CHECK_THAT(r.output, Catch::Contains("real.json: field 'hw.memory.l1.size_bytes'"));
   write_file(dir / "bad.json", R"({"hw": {"box": {"count": -1}}})");
   r = run_vbsim("replay " + trace + " --mode cycle --config " + (dir / "bad.json").string());
   CHECK(r.exit_code == 2);

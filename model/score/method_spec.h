@@ -1,0 +1,34 @@
+// Method specs: one entry of a method list (`vbsim score --methods`), a method
+// or composition with optional parameters, written
+//     METHOD[+METHOD...][:KEY=VALUE[:KEY=VALUE...]]
+// e.g. `validity-bit:vb-eps-mode=fixed:vb-eps=1e-4` or `tmin:tmin-eps=1e-3`.
+// KEYs are the long options of `vbsim replay` without their dashes (tmin-eps,
+// offset-normal-eps, offset-direction-eps, adaptive-origin, adaptive-float-scale,
+// adaptive-int-scale, vb-policy, vb-eps-mode, vb-eps, vb-guard-bits,
+// vb-min-exponent, vb-component-scale, vb-tests, hitpoint); vb-tests takes its
+// tests joined by '+' (`vb-tests=normal+ray+component`). A list is entries
+// separated by ','. Every other parameter keeps its default.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "replay/replay_options.h"
+
+namespace vbsim {
+
+struct MethodSpec {
+  std::string label;  ///< the entry as written: the row label of a score table
+  ReplayOptions options;
+};
+
+/// Parses one entry; throws ConfigError naming the entry and the bad key or value.
+MethodSpec parse_method_spec(const std::string& entry);
+
+/// Parses a ','-separated list of entries (empty entries are errors).
+std::vector<MethodSpec> parse_method_list(const std::string& list);
+
+/// The methods `vbsim score` compares when no list is given: every method and
+/// the compositions and parameter variants renderers and the patent use.
+const std::vector<std::string>& default_score_methods();
+
+}  // namespace vbsim

@@ -1,0 +1,118 @@
+#include "score/score_run.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <set>
+
+#include "replay/functional_replayer.h"
+#include "replay/replay_run.h"
+#include "score/parallel_for.h"
+#include "score/trace_blocks.h"
+#include "trace/trace_file.h"
+
+namespace vbsim {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+/// Rays parsed at a time; every configuration replays a block before the next is read.
+constexpr size_t kBlockRays = 16384;
+
+bool is_trace_file(const fs::path& p) {
+  const std::string ext = p.extension().string();
+  return fs::is_regular_file(p) && (ext == ".jsonl" || ext == ".vbt");
+}
+
+/// Replays one trace with every configuration, adding into cells[0..configs).
+void score_trace(const std::string& path, const std::vector<ScoreConfig>& configs,
+                 std::vector<CandidateFilter>& filters, ScoreCell* cells, int threads) {
+  auto source = open_trace(path);
+  const SceneAndBvh sb = load_trace_scene(source->header());
+  check_traversal_depth(sb.bvh);
+  source->set_triangle_count(sb.scene.size());
+  TraceBlocks blocks(*source);
+  std::vector<ReplayStats> stats(configs.size());
+  while (blocks.next_block(kBlockRays)) {
+    parallel_for(configs.size(), threads, [&](size_t c) {
+      const auto start = std::chrono::steady_clock::now();
+      const std::vector<TraceRay>& rays = blocks.rays();
+      for (size_t i = 0; i < rays.size(); ++i) {
+        KindStats& ks = stats[c].by_kind[static_cast<int>(rays[i].kind)];
+        replay_one_ray(rays[i], sb.scene, sb.bvh, configs[c].options, filters[c], blocks.parents_for(i), ks);
+      }
+      stats[c].wall_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    });
+  }
+  for (size_t c = 0; c < configs.size(); ++c) {
+    for (int k = 0; k < kRayKindCount; ++k) cells[c].stats.by_kind[k].add(stats[c].by_kind[k]);
+    cells[c].stats.wall_s += stats[c].wall_s;
+    ++cells[c].traces;
+  }
+}
+
+}  // namespace
+
+std::vector<ScoreFamily> collect_score_families(const std::vector<std::string>& paths) {
+  std::vector<ScoreFamily> out;
+  std::set<std::string> names;
+  for (const std::string& p : paths) {
+    const fs::path path(p);
+    ScoreFamily fam;
+    if (fs::is_directory(path)) {
+      fam.name = fs::absolute(path).lexically_normal().parent_path().filename().string();
+      if (path.filename() != "" && path.filename() != ".") fam.name = path.filename().string();
+      for (const auto& e : fs::directory_iterator(path))
+        if (is_trace_file(e.path())) fam.traces.push_back(e.path().string());
+      std::sort(fam.traces.begin(), fam.traces.end());
+      if (fam.traces.empty()) throw std::runtime_error(fmt::format("{}: no trace files (.jsonl, .vbt) in this directory", p));
+    } else if (fs::is_regular_file(path)) {
+      fam.name = path.stem().string();
+      fam.traces.push_back(p);
+    } else {
+      throw std::runtime_error(fmt::format("{}: no such trace file or directory", p));
+    }
+    fam.generator = open_trace(fam.traces.front())->header().generator;
+    if (!names.insert(fam.name).second)
+      throw std::runtime_error(fmt::format("{}: a second scenario family named '{}'", p, fam.name));
+    out.push_back(std::move(fam));
+  }
+  return out;
+}
+
+std::vector<ScoreConfig> score_configs(const std::vector<MethodSpec>& methods,
+                                       const std::vector<TesterKind>& testers) {
+  std::vector<ScoreConfig> out;
+  for (const MethodSpec& m : methods)
+    for (TesterKind t : testers) {
+      ScoreConfig c{m.label, m.options};
+      c.options.tester = t;
+      out.push_back(std::move(c));
+    }
+  return out;
+}
+
+std::vector<ScoreCell> run_score(const std::vector<ScoreFamily>& families,
+                                 const std::vector<ScoreConfig>& configs, int threads) {
+  std::vector<CandidateFilter> filters;
+  for (const ScoreConfig& c : configs) filters.emplace_back(c.options.method);
+  std::vector<ScoreCell> cells;
+  for (const ScoreFamily& fam : families) {
+    const size_t first = cells.size();
+    for (const ScoreConfig& c : configs) {
+      ScoreCell cell;
+      cell.family = fam.name;
+      cell.method = c.method;
+      cell.tester = c.options.tester;
+      cell.config = replay_config_json(c.options);
+      cells.push_back(std::move(cell));
+    }
+    for (const std::string& trace : fam.traces) score_trace(trace, configs, filters, &cells[first], threads);
+  }
+  return cells;
+}
+
+}  // namespace vbsim

@@ -1,0 +1,64 @@
+#!/usr/bin/python3
+"""Regenerates traces/ci/score.expected.json: the exact counts of `vbsim score`
+on small fixed-seed scenario cases and the bundled trace, as the system test
+`score of the CI scenarios matches the committed counts` checks them.
+
+Run after a deliberate change of behaviour (or to add scenarios or methods to
+the CI subset), and say why in the commit:
+    /usr/bin/python3 scripts/update_score_expected.py [path/to/vbsim]
+"""
+import json
+import os
+import subprocess
+import sys
+import tempfile
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+OUT = os.path.join(ROOT, "traces", "ci", "score.expected.json")
+# (family directory name, `vbsim gen` arguments before -o)
+GEN = [
+    ("paths", "paths --rays 25 --seed 11"),
+]
+BUNDLED = "traces/bunny"
+METHODS = ",".join([
+    "none", "tmin", "primid", "offset-normal", "offset-adaptive", "offset-errbound", "validity-bit",
+    "validity-bit:vb-eps-mode=fixed:vb-eps=1e-4", "validity-bit:vb-policy=vote", "sign-only",
+    "shading-position+offset-adaptive", "reverse-shadow",
+])
+TESTERS = "three-half-plane,moller-trumbore"
+
+
+def main():
+    vbsim = sys.argv[1] if len(sys.argv) > 1 else os.path.join(ROOT, "build", "vbsim")
+    with tempfile.TemporaryDirectory() as tmp:
+        paths = []
+        for family, args in GEN:
+            out = os.path.join(tmp, family)
+            subprocess.run([vbsim, "gen"] + args.split() + ["-o", out], check=True, stdout=subprocess.DEVNULL)
+            paths.append(out)
+        paths.append(os.path.join(ROOT, BUNDLED))
+        score_path = os.path.join(tmp, "score.json")
+        subprocess.run([vbsim, "score"] + paths + ["-q", "--methods", METHODS, "--testers", TESTERS,
+                                                   "--out", score_path], check=True)
+        with open(score_path) as f:
+            score = json.load(f)
+    rows = [{
+        "family": r["family"], "method": r["method"], "tester": r["tester"], "kind": r["kind"],
+        "counts": r["counts"], "suspects": r["avoidance"]["suspects"], "rejected": r["avoidance"]["rejected"],
+    } for r in score["rows"]]
+    result = {
+        "gen": [{"family": family, "args": args} for family, args in GEN],
+        "bundled": BUNDLED,
+        "methods": METHODS,
+        "testers": TESTERS,
+        "rows": rows,
+    }
+    os.makedirs(os.path.dirname(OUT), exist_ok=True)
+    with open(OUT, "w") as f:
+        json.dump(result, f, indent=1)
+        f.write("\n")
+    print(f"wrote {OUT} ({len(rows)} rows)")
+
+
+if __name__ == "__main__":
+    main()

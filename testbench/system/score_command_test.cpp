@@ -1,0 +1,158 @@
+// vbsim score end to end: the same counts as `vbsim replay`, the committed
+// counts of a small fixed-seed scenario (CI subset), the markdown page, and
+// errors on bad input.
+#include <catch2/catch.hpp>
+
+#include <nlohmann/json.hpp>
+
+#include "run_vbsim.h"
+
+using namespace vbsim::test;
+using nlohmann::json;
+
+namespace {
+
+const json* find_row(const json& score, const std::string& family, const std::string& method,
+                     const std::string& tester, const std::string& kind) {
+  for (const auto& r : score["rows"])
+    if (r["family"] == family && r["method"] == method && r["tester"] == tester && r["kind"] == kind) return &r;
+  return nullptr;
+}
+
+}  // namespace
+
+TEST_CASE("score counts equal vbsim replay counts for the same method", "[system][score]") {
+  const auto dir = scratch_dir("score_replay");
+  const auto cases = (dir / "paths").string();
+  REQUIRE(run_vbsim("gen paths --rays 12 --seed 5 -o " + cases).exit_code == 0);
+  const std::string methods = "none,validity-bit:vb-eps-mode=fixed:vb-eps=1e-5,tmin:tmin-eps=1e-3,offset-adaptive+primid";
+  const RunResult sr = run_vbsim("score " + cases + " -q --methods " + methods +
+                                 " --testers three-half-plane,moller-trumbore --out " + (dir / "s.json").string());
+  INFO(sr.output);
+  REQUIRE(sr.exit_code == 0);
+  const json score = json::parse(read_file(dir / "s.json"));
+  // The same configurations through `vbsim replay`, spelled as its options.
+  const std::vector<std::pair<std::string, std::string>> replays = {
+      {"none", "-m none"},
+      {"validity-bit:vb-eps-mode=fixed:vb-eps=1e-5", "-m validity-bit --vb-eps-mode fixed --vb-eps 1e-5"},
+      {"tmin:tmin-eps=1e-3", "-m tmin --tmin-eps 1e-3"},
+      {"offset-adaptive+primid", "-m offset-adaptive+primid"}};
+  for (const auto& [label, options] : replays)
+    for (const std::string tester : {"three-half-plane", "moller-trumbore"}) {
+      const auto stats_path = (dir / "stats.json").string();
+      const RunResult r = run_vbsim("replay " + cases + "/paths.jsonl -q --stats " + stats_path + " " + options +
+                                    " --tester " + tester);
+      REQUIRE(r.exit_code == 0);
+      const json stats = json::parse(read_file(stats_path));
+      INFO(label << " " << tester);
+      const json* all = find_row(score, "paths", label, tester, "all");
+      REQUIRE(all);
+      CHECK((*all)["counts"] == stats["verdicts"]);
+      CHECK((*all)["rays"] == stats["rays"]);
+      for (const char* k : {"candidates", "suspects", "rejected"})
+        CHECK((*all)["avoidance"][k] == stats["avoidance"][k]);
+      for (const auto& [kind, ks] : stats["by_kind"].items()) {
+        const json* row = find_row(score, "paths", label, tester, kind);
+        REQUIRE(row);
+        CHECK((*row)["counts"] == ks["verdicts"]);
+        CHECK((*row)["avoidance"]["rejected"] == ks["avoidance"]["rejected"]);
+      }
+    }
+  // One thread gives the same table as two.
+  REQUIRE(run_vbsim("score " + cases + " -q --threads 1 --methods " + methods +
+                    " --testers three-half-plane,moller-trumbore --out " + (dir / "s1.json").string())
+              .exit_code == 0);
+  const json one = json::parse(read_file(dir / "s1.json"));
+  REQUIRE(one["rows"].size() == score["rows"].size());
+  for (size_t i = 0; i < one["rows"].size(); ++i) {
+    CHECK(one["rows"][i]["counts"] == score["rows"][i]["counts"]);
+    CHECK(one["rows"][i]["method"] == score["rows"][i]["method"]);
+  }
+}
+
+TEST_CASE("score of the CI scenarios matches the committed counts", "[system][score][ci]") {
+  // Regenerate the expectations with scripts/update_score_expected.py.
+  const json expected = json::parse(read_file(source_dir() + "/traces/ci/score.expected.json"));
+  const auto dir = scratch_dir("score_ci");
+  std::string paths;
+  for (const auto& g : expected["gen"]) {
+    const auto out = (dir / g["family"].get<std::string>()).string();
+    const RunResult r = run_vbsim("gen " + g["args"].get<std::string>() + " -o " + out);
+    INFO(r.output);
+    REQUIRE(r.exit_code == 0);
+    paths += " " + out;
+  }
+  paths += " " + source_dir() + "/" + expected["bundled"].get<std::string>();
+  const RunResult r = run_vbsim("score" + paths + " -q --methods " + expected["methods"].get<std::string>() +
+                                " --testers " + expected["testers"].get<std::string>() + " --out " +
+                                (dir / "score.json").string());
+  INFO(r.output);
+  REQUIRE(r.exit_code == 0);
+  const json got = json::parse(read_file(dir / "score.json"));
+  size_t compared = 0;
+  for (const auto& want : expected["rows"]) {
+    const json* row = find_row(got, want["family"], want["method"], want["tester"], want["kind"]);
+    INFO(want.dump());
+    REQUIRE(row);
+    CHECK((*row)["counts"] == want["counts"]);
+    CHECK((*row)["avoidance"]["suspects"] == want["suspects"]);
+    CHECK((*row)["avoidance"]["rejected"] == want["rejected"]);
+    ++compared;
+  }
+  CHECK(compared == got["rows"].size());
+  CHECK(compared > 20);
+}
+
+TEST_CASE("score writes a generated markdown page with intervals", "[system][score]") {
+  const auto dir = scratch_dir("score_md");
+  const auto md = (dir / "accuracy.md").string();
+  const RunResult r = run_vbsim("score " + source_dir() + "/traces/bunny -q --methods none,tmin --testers "
+                                "three-half-plane --accuracy-md " + md + " --regenerate-with 'scripts/make_results.sh'");
+  INFO(r.output);
+  REQUIRE(r.exit_code == 0);
+  const std::string text = read_file(md);
+  CHECK_THAT(text, Catch::Contains("do not edit by hand") && Catch::Contains("    scripts/make_results.sh") &&
+                       Catch::Contains("## bunny") && Catch::Contains("| `tmin` | three-half-plane | all | 1008 |"));
+  // tmin has no self hit on the bundled trace: rate 0, upper bound z^2/(n+z^2) per million.
+  CHECK_THAT(text, Catch::Contains("| 0 [0, 3797] |"));
+}
+
+TEST_CASE("score rejects bad input with a clear message", "[system][score][errors]") {
+  const auto dir = scratch_dir("score_errors");
+  const std::string bunny = source_dir() + "/traces/bunny";
+  struct Case {
+    std::string args, message;
+  };
+  const std::vector<Case> cases = {
+      {"score " + (dir / "nothing").string(), "no such trace file or directory"},
+      {"score " + dir.string(), "no trace files"},
+      {"score " + bunny + " --methods warp", "unknown value \"warp\""},
+      {"score " + bunny + " --methods tmin:eps=3", "unknown key 'eps'"},
+      {"score " + bunny + " --testers slab", "unknown tester 'slab'"},
+      {"score " + bunny + " " + bunny, "a second scenario family named 'bunny'"},
+      {"score " + bunny + " --threads 0", "--threads"},
+      {"score " + bunny + " --methods none --out /nonexistent/dir/s.json", "cannot write score JSON"},
+  };
+  for (const Case& c : cases) {
+    const RunResult r = run_vbsim(c.args);
+    INFO(c.args << "\n" << r.output);
+    CHECK(r.exit_code != 0);
+    CHECK_THAT(r.output, Catch::Contains(c.message));
+  }
+  // A trace with a broken line names the file and the line.
+  const std::string trace = read_file(bunny + "/paths.jsonl");
+  const size_t second_line = trace.find('\n', trace.find('\n') + 1) + 1;
+  write_file(dir / "bad.jsonl", trace.substr(0, second_line) + "{\"id\": }\n");
+  write_file(dir / "bunny.obj", read_file(bunny + "/bunny.obj"));
+  const RunResult r = run_vbsim("score " + (dir / "bad.jsonl").string() + " --methods none");
+  CHECK(r.exit_code != 0);
+  CHECK_THAT(r.output, Catch::Contains("bad.jsonl") && Catch::Contains("3"));
+}
+
+TEST_CASE("vbsim scenarios lists every scenario gen accepts", "[system][score]") {
+  const RunResult r = run_vbsim("scenarios --names");
+  REQUIRE(r.exit_code == 0);
+  CHECK_THAT(r.output, Catch::StartsWith("paths\n") || Catch::Contains("\npaths\n"));
+  const RunResult bad = run_vbsim("gen no-such-scenario -o /tmp/vbsim_none");
+  CHECK_THAT(bad.output, Catch::Contains("scenarios: " + r.output.substr(0, r.output.find('\n'))));
+}
