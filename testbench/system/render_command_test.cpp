@@ -1,0 +1,109 @@
+// vbsim render as a user runs it: PNG files that stb_image reads back with the
+// documented colours, the printed pixel counts, and clear errors.
+#include <catch2/catch.hpp>
+
+#include <stb/stb_image.h>
+
+#include <memory>
+#include <regex>
+
+#include "../unit/render_test_scene.h"
+#include "run_vbsim.h"
+
+using namespace vbsim::test;
+
+namespace {
+
+struct Png {
+  int w = 0, h = 0, channels = 0;
+  std::unique_ptr<unsigned char, void (*)(void*)> data{nullptr, stbi_image_free};
+  std::array<int, 3> at(int x, int y) const {
+    const unsigned char* p = data.get() + 3 * (size_t(y) * w + x);
+    return {p[0], p[1], p[2]};
+  }
+};
+
+Png read_png(const std::filesystem::path& p) {
+  Png png;
+  png.data.reset(stbi_load(p.string().c_str(), &png.w, &png.h, &png.channels, 3));
+  return png;
+}
+
+long printed_count(const std::string& output, const std::string& what) {
+  std::smatch m;
+  if (!std::regex_search(output, m, std::regex(what + " (\\d+)"))) return -1;
+  return std::stol(m[1]);
+}
+
+}  // namespace
+
+TEST_CASE("render writes both images readable by stb_image with the legend's colours", "[render][cli]") {
+  const auto dir = scratch_dir("render_png");
+  write_render_test_obj((dir / "quad.obj").string());
+  const RunResult r = run_vbsim("render " + (dir / "quad.obj").string() + " --method none --size 8x6 --light " +
+                                kRenderTestLight + " -o " + (dir / "img.png").string() + " --errors " +
+                                (dir / "err.png").string());
+  REQUIRE(r.exit_code == 0);
+  const Png img = read_png(dir / "img.png"), err = read_png(dir / "err.png");
+  REQUIRE(img.data);
+  REQUIRE(err.data);
+  CHECK(img.w == 8);
+  CHECK(img.h == 6);
+  CHECK(img.channels == 3);
+  CHECK(err.w == 8);
+  CHECK(err.h == 6);
+  // The top-left pixel looks over the scene: the documented background, and
+  // its grey level (77 r + 150 g + 29 b) / 256 in the error image.
+  CHECK(img.at(0, 0) == std::array<int, 3>{60, 72, 96});
+  CHECK(err.at(0, 0) == std::array<int, 3>{71, 71, 71});
+  // As many red pixels in the error image as the command reports acne pixels.
+  long red = 0;
+  for (int y = 0; y < err.h; ++y)
+    for (int x = 0; x < err.w; ++x) red += err.at(x, y) == std::array<int, 3>{255, 40, 40};
+  CHECK(red > 0);
+  CHECK(printed_count(r.output, "acne") == red);
+  CHECK(printed_count(r.output, "leak") == 0);
+}
+
+TEST_CASE("render takes scene and light and transform from a trace header", "[render][cli]") {
+  const auto dir = scratch_dir("render_trace");
+  write_render_test_obj((dir / "quad.obj").string());
+  // A header-only trace moving the scene 2^12 away in x.
+  write_file(dir / "far.jsonl",
+             "{\"format\":\"vbsim-trace\",\"version\":1,\"scene\":\"quad.obj\",\"light\":[4096,50,-30],"
+             "\"transform\":[1,0,0,4096, 0,1,0,0, 0,0,1,0, 0,0,0,1]}\n");
+  const RunResult r = run_vbsim("render " + (dir / "far.jsonl").string() +
+                                " -m offset-errbound --size 8x8 -o " + (dir / "far.png").string());
+  REQUIRE(r.exit_code == 0);
+  CHECK_THAT(r.output, Catch::Contains("light point:4096,50,-30"));
+  CHECK(printed_count(r.output, "acne") == 0);
+  CHECK(printed_count(r.output, "leak") == 0);
+  const Png img = read_png(dir / "far.png");
+  REQUIRE(img.data);
+  CHECK(img.w == 8);
+}
+
+TEST_CASE("render errors name the option or the file", "[render][cli]") {
+  const auto dir = scratch_dir("render_errors");
+  write_render_test_obj((dir / "quad.obj").string());
+  const std::string scene = (dir / "quad.obj").string(), out = " -o " + (dir / "x.png").string();
+  for (const char* size : {"8", "0x8", "8x", "8x8x8", "axb", "99999x2"}) {
+    INFO(size);
+    const RunResult r = run_vbsim("render " + scene + out + " --size " + size);
+    CHECK(r.exit_code != 0);
+    CHECK(r.exit_code < 128);
+    CHECK_THAT(r.output, Catch::Contains("--size") && Catch::Contains(size));
+  }
+  RunResult r = run_vbsim("render " + (dir / "missing.ply").string() + out);
+  CHECK(r.exit_code != 0);
+  CHECK_THAT(r.output, Catch::Contains("missing.ply"));
+  r = run_vbsim("render " + scene + out + " --light sun:1,2,3");
+  CHECK(r.exit_code != 0);
+  CHECK_THAT(r.output, Catch::Contains("--light") && Catch::Contains("sun:1,2,3"));
+  r = run_vbsim("render " + scene + out + " --camera 1,2,3");
+  CHECK(r.exit_code != 0);
+  CHECK_THAT(r.output, Catch::Contains("--camera"));
+  r = run_vbsim("render " + scene + " -o " + (dir / "no_such_dir" / "x.png").string());
+  CHECK(r.exit_code != 0);
+  CHECK_THAT(r.output, Catch::Contains("no_such_dir"));
+}
