@@ -1,15 +1,20 @@
 #!/usr/bin/env bash
-# Regenerates the committed accuracy results (docs/results/accuracy.md): builds
-# vbsim, generates every scenario `vbsim scenarios` lists into
-# build/results/scenarios/NAME with a fixed seed, and scores all of them with
-# every method and both testers (`vbsim score`). The full table is also written
-# as JSON to build/results/accuracy.json.
+# Regenerates every committed result in docs/results/ with one command:
+#  1. accuracy.md: generates every scenario `vbsim scenarios` lists into
+#     build/results/scenarios/FAMILY with a fixed seed (random-triangles as two
+#     families, one per protocol) and scores all of them with every method and
+#     both testers (`vbsim score`); the full table also goes to
+#     build/results/accuracy.json;
+#  2. pareto.md and pareto-*.png: speed against accuracy (scripts/pareto.py);
+#  3. stability.md, sweep-*.png, sweeps.csv: stability sweeps (scripts/sweep.py);
+#  4. montage.png: every method rendered on the failure scenes
+#     (scripts/make_montage.py).
 #
 #   scripts/make_results.sh [--rays N] [--seed S]
 #
 # --rays (default 10000) is passed to every scenario's `vbsim gen --rays`; a
-# scenario whose rays mean something costlier can get its own count in
-# rays_for() below. Same arguments, same files.
+# scenario whose rays mean something costlier gets its own count in rays_for()
+# below. Same arguments, same files (but for the measured speeds).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$root"
@@ -25,10 +30,22 @@ while (($#)); do
   esac
 done
 
-# Per-scenario ray counts where the common one does not fit (none so far).
+# Per-family ray counts where the common one does not fit: a random-triangles
+# "ray" is a triangle with its own scene and trace and about ten rays.
 rays_for() {
   case "$1" in
+    random-triangles-rtg) echo $((rays / 5)) ;;
+    random-triangles-pbrt) echo $((rays / 10)) ;;
     *) echo "$rays" ;;
+  esac
+}
+
+# The families of a scenario: FAMILY and its extra `vbsim gen` arguments.
+families_of() {
+  case "$1" in
+    random-triangles) echo "random-triangles-rtg --set protocol=rtg"
+                      echo "random-triangles-pbrt --set protocol=pbrt" ;;
+    *) echo "$1" ;;
   esac
 }
 
@@ -40,10 +57,19 @@ mkdir -p "$out/scenarios"
 
 dirs=()
 for scenario in $("$vbsim" scenarios --names); do
-  "$vbsim" gen "$scenario" --rays "$(rays_for "$scenario")" --seed "$seed" -o "$out/scenarios/$scenario"
-  dirs+=("$out/scenarios/$scenario")
+  while read -r family extra; do
+    # shellcheck disable=SC2086 # extra holds separate words
+    "$vbsim" gen "$scenario" --rays "$(rays_for "$family")" --seed "$seed" $extra \
+      -o "$out/scenarios/$family" > /dev/null
+    dirs+=("$out/scenarios/$family")
+  done < <(families_of "$scenario")
 done
 
 "$vbsim" score "${dirs[@]}" --out "$out/accuracy.json" --accuracy-md docs/results/accuracy.md \
   --regenerate-with "scripts/make_results.sh${args[*]:+ ${args[*]}}"
 echo "make_results.sh: wrote docs/results/accuracy.md and $out/accuracy.json" >&2
+
+/usr/bin/python3 scripts/pareto.py --score "$out/accuracy.json" --out docs/results
+/usr/bin/python3 scripts/sweep.py --vbsim "$vbsim" --work "$out/sweeps" --out docs/results
+/usr/bin/python3 scripts/make_montage.py
+echo "make_results.sh: every result in docs/results/ regenerated" >&2

@@ -78,7 +78,7 @@ SWEEPS = [
         ],
     },
     {
-        "name": "distance", "scenario": "random-triangles", "rays": 60, "seed": 1,
+        "name": "distance", "scenario": "random-triangles", "rays": 200, "seed": 1,
         "title": "Distance from the origin (Ray Tracing Gems Figure 6-7 triangles)",
         "about": "Isolated random triangles (edge scale 2^-16 to 2^22) whose centres lie "
                  "2^k from the origin; a bounce and diffuse children leave each hit. Every "
@@ -89,7 +89,7 @@ SWEEPS = [
         "methods": DEFAULT_METHODS,
     },
     {
-        "name": "triangle-size", "scenario": "random-triangles", "rays": 60, "seed": 1,
+        "name": "triangle-size", "scenario": "random-triangles", "rays": 200, "seed": 1,
         "title": "Triangle size (Ray Tracing Gems Figure 6-7 triangles)",
         "about": "Isolated random triangles at distances 2^-16 to 2^22 whose vertices lie "
                  "2^k from their centre.",
@@ -99,7 +99,7 @@ SWEEPS = [
         "methods": DEFAULT_METHODS,
     },
     {
-        "name": "far-instance", "scenario": "far-instance", "rays": 60, "seed": 1,
+        "name": "far-instance", "scenario": "far-instance", "rays": 150, "seed": 1,
         "title": "A mesh 2^k from the origin (bunny paths under a float32 instance transform)",
         "about": "The bunny translated by 2^k along (1, 1, 1); multi-bounce paths over it.",
         "key": "k", "values": list(range(0, 25, 4)), "xlog": False, "hard": "high",
@@ -107,7 +107,7 @@ SWEEPS = [
         "methods": DEFAULT_METHODS,
     },
     {
-        "name": "grazing-angle", "scenario": "grazing", "rays": 100, "seed": 1,
+        "name": "grazing-angle", "scenario": "grazing", "rays": 300, "seed": 1,
         "title": "Grazing angle of the child ray (plane, cylinder, bowl)",
         "about": "Diffuse children leaving a tessellated plane, a convex cylinder and a "
                  "concave bowl at one fixed elevation angle per point.",
@@ -117,7 +117,7 @@ SWEEPS = [
         "methods": DEFAULT_METHODS,
     },
     {
-        "name": "dihedral-angle", "scenario": "shared-edges", "rays": 100, "seed": 1,
+        "name": "dihedral-angle", "scenario": "shared-edges", "rays": 300, "seed": 1,
         "title": "Dihedral angle at shared edges (flat, convex, concave sheets)",
         "about": "Spawn points a few ulps from shared edges and vertices of sheets folded "
                  "by 180 +/- delta degrees; grazing children.",
@@ -126,7 +126,7 @@ SWEEPS = [
         "methods": DEFAULT_METHODS,
     },
     {
-        "name": "crevice-angle", "scenario": "crevice", "rays": 100, "seed": 1,
+        "name": "crevice-angle", "scenario": "crevice", "rays": 300, "seed": 1,
         "title": "Opening angle of a crevice (Ray Tracing Gems Figure 6-8)",
         "about": "Concave wedges; spawn points 1e-6 to 1e-2 from the crease.",
         "key": "angles", "values": [1, 2, 5, 10, 20, 45, 90], "xlog": True, "hard": "low",
@@ -134,7 +134,7 @@ SWEEPS = [
         "methods": DEFAULT_METHODS,
     },
     {
-        "name": "layer-separation", "scenario": "layers", "rays": 100, "seed": 1,
+        "name": "layer-separation", "scenario": "layers", "rays": 300, "seed": 1,
         "title": "Separation of parallel layers, in units of the offset (1e-4)",
         "about": "A decal over a wall and a thin sheet, S times 1e-4 apart; refraction, "
                  "reflection and shadow children toward the neighbour. Fixed offsets and "

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
 #include "score/wilson_interval.h"
 
 namespace vbsim {
@@ -50,6 +52,48 @@ std::string rate_cell(const nlohmann::json& r) {
 
 std::string percent(double x) { return x == 0 ? "0" : fmt::format("{:.3f}", 100 * x); }
 
+/// Errors (self_hit + false_hit + missed) per million scored rays of an `all` row.
+std::string errors_per_million(const nlohmann::json& r) {
+  const auto& c = r["counts"];
+  const uint64_t errors = c["self_hit"].get<uint64_t>() + c["false_hit"].get<uint64_t>() +
+                          c["missed"].get<uint64_t>();
+  return format_per_million(kPerMillion * ratio(errors, r["scored"].get<uint64_t>()));
+}
+
+/// One table per tester: methods down, families across, errors per million.
+std::string summary_markdown(const nlohmann::json& score) {
+  std::vector<std::string> families, methods, testers;
+  const auto add = [](std::vector<std::string>& v, const std::string& x) {
+    if (std::find(v.begin(), v.end(), x) == v.end()) v.push_back(x);
+  };
+  for (const auto& f : score["families"]) add(families, f["name"].get<std::string>());
+  for (const auto& r : score["rows"]) {
+    add(methods, r["method"].get<std::string>());
+    add(testers, r["tester"].get<std::string>());
+  }
+  std::string md;
+  for (const std::string& tester : testers) {
+    md += fmt::format("\n## Summary, {} tester: errors per million rays\n\n", tester);
+    md += "self_hit + false_hit + missed per million scored rays, all ray kinds.\n\n| method |";
+    for (const std::string& f : families) md += fmt::format(" {} |", f);
+    md += "\n|---|";
+    for (size_t i = 0; i < families.size(); ++i) md += "---:|";
+    md += "\n";
+    for (const std::string& m : methods) {
+      md += fmt::format("| `{}` |", m);
+      for (const std::string& f : families) {
+        std::string cell = " ";
+        for (const auto& r : score["rows"])
+          if (r["kind"] == "all" && r["tester"] == tester && r["method"] == m && r["family"] == f)
+            cell = errors_per_million(r);
+        md += fmt::format(" {} |", cell);
+      }
+      md += "\n";
+    }
+  }
+  return md;
+}
+
 }  // namespace
 
 std::string format_per_million(double x) {
@@ -92,6 +136,7 @@ std::string score_markdown(const nlohmann::json& score, const std::string& regen
         "still has a non-zero upper bound. `suspect %` and `rejected %` are the avoidance "
         "unit's suspects and the filters' rejections per candidate hit. `rays/s`: functional "
         "replay speed of the configuration, verdicts included, one thread.\n";
+  md += summary_markdown(score);
   for (const auto& fam : score["families"]) {
     const std::string name = fam["name"].get<std::string>();
     md += fmt::format("\n## {}\n\n{} trace(s)", name, fam["traces"].get<int64_t>());

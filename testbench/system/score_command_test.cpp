@@ -115,6 +115,10 @@ TEST_CASE("score writes a generated markdown page with intervals", "[system][sco
                        Catch::Contains("## bunny") && Catch::Contains("| `tmin` | three-half-plane | all | 1008 |"));
   // tmin has no self hit on the bundled trace: rate 0, upper bound z^2/(n+z^2) per million.
   CHECK_THAT(text, Catch::Contains("| 0 [0, 3797] |"));
+  // The summary: 369 self hits of 1008 rays without a method (the committed
+  // expectations of the default trace) are 366071 per million.
+  CHECK_THAT(text, Catch::Contains("## Summary, three-half-plane tester") &&
+                       Catch::Contains("| `none` | 366071 |") && Catch::Contains("| `tmin` | 0 |"));
 }
 
 TEST_CASE("score rejects bad input with a clear message", "[system][score][errors]") {
