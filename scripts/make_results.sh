@@ -45,6 +45,8 @@ families_of() {
   case "$1" in
     random-triangles) echo "random-triangles-rtg --set protocol=rtg"
                       echo "random-triangles-pbrt --set protocol=pbrt" ;;
+    paths) echo "paths"
+           echo "paths-wuson --set scene=traces/wuson/WusonOBJ.obj" ;;
     *) echo "$1" ;;
   esac
 }

@@ -15,9 +15,11 @@ import tempfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 OUT = os.path.join(ROOT, "traces", "ci", "score.expected.json")
-# (family directory name, `vbsim gen` arguments before -o)
+# (family directory name, `vbsim gen` arguments before -o; {source} stands for the
+# source tree, which the test replaces with its own)
 GEN = [
     ("paths", "paths --rays 25 --seed 11"),
+    ("paths-wuson", "paths --rays 12 --seed 11 --set scene={source}/traces/wuson/WusonOBJ.obj"),
     ("random-triangles-rtg", "random-triangles --rays 12 --seed 11"),
     ("random-triangles-pbrt", "random-triangles --rays 12 --seed 11 --set protocol=pbrt"),
     ("grazing", "grazing --rays 12 --seed 11"),
@@ -45,7 +47,7 @@ def main():
         paths = []
         for family, args in GEN:
             out = os.path.join(tmp, family)
-            subprocess.run([vbsim, "gen"] + args.split() + ["-o", out], check=True, stdout=subprocess.DEVNULL)
+            subprocess.run([vbsim, "gen"] + args.replace("{source}", ROOT).split() + ["-o", out], check=True, stdout=subprocess.DEVNULL)
             paths.append(out)
         paths.append(os.path.join(ROOT, BUNDLED))
         score_path = os.path.join(tmp, "score.json")

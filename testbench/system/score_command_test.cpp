@@ -77,7 +77,9 @@ TEST_CASE("score of the CI scenarios matches the committed counts", "[system][sc
   std::string paths;
   for (const auto& g : expected["gen"]) {
     const auto out = (dir / g["family"].get<std::string>()).string();
-    const RunResult r = run_vbsim("gen " + g["args"].get<std::string>() + " -o " + out);
+    std::string args = g["args"].get<std::string>();
+    for (size_t at; (at = args.find("{source}")) != std::string::npos;) args.replace(at, 8, source_dir());
+    const RunResult r = run_vbsim("gen " + args + " -o " + out);
     INFO(r.output);
     REQUIRE(r.exit_code == 0);
     paths += " " + out;
