@@ -11,6 +11,7 @@ struct TesterName {
 constexpr TesterName kTesterNames[] = {
     {TesterKind::ThreeHalfPlane, "three-half-plane"},
     {TesterKind::MollerTrumbore, "moller-trumbore"},
+    {TesterKind::PbrtWatertight, "pbrt-watertight"},
 };
 }  // namespace
 

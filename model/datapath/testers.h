@@ -15,8 +15,9 @@
 
 namespace vbsim {
 
-enum class TesterKind { ThreeHalfPlane, MollerTrumbore };
-const char* tester_name(TesterKind kind);          ///< "three-half-plane" / "moller-trumbore"
+enum class TesterKind { ThreeHalfPlane, MollerTrumbore, PbrtWatertight };
+/// "three-half-plane" / "moller-trumbore" / "pbrt-watertight"
+const char* tester_name(TesterKind kind);
 bool parse_tester(const std::string& name, TesterKind& out);
 
 /// The patent's three-half-plane test: the ray hits when its direction lies on
@@ -28,13 +29,29 @@ bool parse_tester(const std::string& name, TesterKind& out);
 class ThreeHalfPlaneTester {
  public:
   explicit ThreeHalfPlaneTester(const Ray& ray);
-  bool intersect(const Triangle& tri, float tmax, Hit& hit) const;
+  bool intersect(const Triangle& tri, float tmax, Hit& hit) const { return test<false>(tri, tmax, hit); }
+
+ protected:
+  /// The test; with kConservativeT, also pbrt-v4's check that t exceeds the
+  /// bound of its own rounding error (PbrtWatertightTester).
+  template <bool kConservativeT>
+  bool test(const Triangle& tri, float tmax, Hit& hit) const;
 
  private:
   Vec3f o_;
   float tmin_;
   int kx_, ky_, kz_;
   float sx_, sy_, sz_;
+};
+
+/// pbrt-v4's triangle test: the same watertight evaluation, plus its
+/// conservative check that the computed t is larger than a bound of its own
+/// rounding error (t <= deltaT is no hit), which pbrt's error-bound origin offset
+/// relies on. Same front bit and barycentrics as ThreeHalfPlaneTester.
+class PbrtWatertightTester : public ThreeHalfPlaneTester {
+ public:
+  explicit PbrtWatertightTester(const Ray& ray) : ThreeHalfPlaneTester(ray) {}
+  bool intersect(const Triangle& tri, float tmax, Hit& hit) const { return test<true>(tri, tmax, hit); }
 };
 
 /// Möller–Trumbore (1997) in float32, as the renderer blog writes it, without

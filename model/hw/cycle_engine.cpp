@@ -327,6 +327,9 @@ std::unique_ptr<CycleEngine> make_cycle_engine(const HwConfig& cfg, FunctionalRe
     case TesterKind::MollerTrumbore:
       return std::make_unique<Engine<MollerTrumboreTester>>(cfg, replayer, bvh, memory, std::move(feed),
                                                             std::move(sink));
+    case TesterKind::PbrtWatertight:
+      return std::make_unique<Engine<PbrtWatertightTester>>(cfg, replayer, bvh, memory, std::move(feed),
+                                                            std::move(sink));
     case TesterKind::ThreeHalfPlane:
     default:
       return std::make_unique<Engine<ThreeHalfPlaneTester>>(cfg, replayer, bvh, memory, std::move(feed),

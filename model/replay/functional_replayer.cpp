@@ -46,6 +46,9 @@ RayOutcome replay_one_ray(const TraceRay& tr, const Scene& scene, const Bvh& bvh
     case TesterKind::MollerTrumbore:
       hit = closest_hit<MollerTrumboreTester>(bvh, er.ray, filter, ks.candidates, ks.traversal, any_hit);
       break;
+    case TesterKind::PbrtWatertight:
+      hit = closest_hit<PbrtWatertightTester>(bvh, er.ray, filter, ks.candidates, ks.traversal, any_hit);
+      break;
   }
   return conclude_ray(tr, er, hit, ks.candidates.rejected - rejected_before, scene, parents, ks);
 }

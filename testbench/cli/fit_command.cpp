@@ -92,7 +92,7 @@ void add_fit_command(CLI::App& app) {
   std::string keys;
   for (const std::string& k : fit_parameter_keys()) keys += (keys.empty() ? "" : ",") + k;
   cmd->add_option("--params", args->params, "comma list of parameters to fit [" + keys + "]");
-  cmd->add_option("--tester", args->tester, "three-half-plane or moller-trumbore")->capture_default_str();
+  cmd->add_option("--tester", args->tester, "three-half-plane, moller-trumbore or pbrt-watertight")->capture_default_str();
   cmd->add_option("--hitpoint", args->hitpoint, "given, ray or barycentric")->capture_default_str();
   cmd->add_option("--vb-policy", args->vb_policy, "validity-bit policy: all, vote or sign-only")->capture_default_str();
   cmd->add_option("--vb-min-exponent", args->vb_min_exponent,

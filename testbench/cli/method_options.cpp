@@ -12,7 +12,7 @@ void add_method_options(CLI::App& app, MethodOptions& o, const std::string& defa
                  "self-intersection method(s), joined by '+': none, tmin, primid, offset-normal, "
                  "offset-direction, offset-adaptive, offset-errbound, validity-bit, sign-only, "
                  "shading-position, shading-position-always, reverse-shadow [" + default_method + "]");
-  app.add_option("--tester", o.tester, "ray/triangle tester: three-half-plane or moller-trumbore [three-half-plane]");
+  app.add_option("--tester", o.tester, "ray/triangle tester: three-half-plane, moller-trumbore or pbrt-watertight (three-half-plane with pbrt-v4's conservative t check) [three-half-plane]");
   app.add_option("--hitpoint", o.hitpoint,
                  "child origin before the method acts: given (the trace's o), ray (parent o + t d) "
                  "or barycentric (parent_uv) [given]");
