@@ -139,7 +139,7 @@ def main():
     family_spec = definition.get("families")
     families, f_points, f_labels = [], [], []
     if family_spec:
-        scenarios = run([vbsim, "scenarios", "--names"]).split()
+        scenarios = family_spec.get("scenarios") or run([vbsim, "scenarios", "--names"]).split()
         families = arch_families.family_traces(run, vbsim, args.work, family_spec, scenarios, ROOT)
         f_points, f_labels = arch_families.family_points(families, family_spec)
     everything = points + p_points + f_points

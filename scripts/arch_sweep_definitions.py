@@ -9,7 +9,8 @@ A definition (this one, or a JSON file given with --definition) has:
             group (sweeps of one group share a figure, named after the group)
   presets   optional: {"presets": [...], "traces": {label: trace}} for the preset table
   families  optional: {"rays": N, "seed": K, "max_traces": M, "methods": [...],
-            "bundled": [PATH...]} for build/results/method_cycles.json
+            "bundled": [PATH...], "preset": P, "scenarios": [...] (default: every
+            scenario `vbsim scenarios` lists)} for build/results/method_cycles.json
 Every point's configuration is {"hw": preset + series fields + the x field}.
 """
 
