@@ -109,7 +109,14 @@ def methods_section(sweep, rows, image):
             row += [at[label]["cycles_per_ray"], at[label]["mean_latency"]]
         row.append(at[labels[-1]]["avoidance_ops_per_ray"])
         body.append(row)
-    return out + table(header, body) + [""]
+    out += table(header, body) + ["", "What limits throughput:", ""]
+    for label in labels:
+        mine = {r["x"]: r for r in rows if r["sweep"] == sweep["name"] and r["series"] == label}
+        cheap = min(mine.values(), key=lambda r: r["cycles_per_ray"])
+        dear = max(mine.values(), key=lambda r: r["cycles_per_ray"])
+        out.append(f"- {label}: `{cheap['x']}` {cheap['cycles_per_ray']:.3g} cycles/ray, "
+                   f"{limit_text(cheap)}; `{dear['x']}` {dear['cycles_per_ray']:.3g} cycles/ray, {limit_text(dear)}.")
+    return out + [""]
 
 
 def presets_section(preset_rows, method):

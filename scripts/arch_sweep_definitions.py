@@ -81,7 +81,8 @@ DEFAULT = {
         {"name": "methods", "title": "Methods: cycles per ray and bits per ray in flight",
          "chart": "methods", "x": "method", "xlabel": "method", "preset": "small", "values": METHODS,
          "series": [{"label": "1 core x 1 slot", "hw": {"cores": 1, "slots_per_core": 1, **REAL}},
-                    {"label": "small preset", "hw": REAL}]},
+                    {"label": "small preset", "hw": REAL},
+                    {"label": "large preset", "hw": {"preset": "large", **REAL}}]},
     ],
     # Named series lists shared by several sweeps.
     "series": {
