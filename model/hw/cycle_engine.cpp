@@ -53,7 +53,7 @@ class Engine final : public CycleEngine {
  public:
   Engine(const HwConfig& cfg, FunctionalReplayer& replayer, const Bvh& bvh, Memory& memory, RayFeed feed,
          RayResultSink sink)
-      : cfg_(cfg), replayer_(replayer), memory_(memory), map_(bvh, cfg.address_base), feed_(std::move(feed)),
+      : cfg_(cfg), replayer_(replayer), bvh_(bvh), memory_(memory), map_(bvh, cfg.address_base), feed_(std::move(feed)),
         sink_(std::move(sink)),
         avoidance_in_use_(replayer.options().method.validity_bit &&
                           replayer.options().method.avoidance.policy != AvoidancePolicy::SignOnly) {
@@ -103,7 +103,15 @@ class Engine final : public CycleEngine {
     EmittedRay er;
   };
 
-  void schedule(uint64_t at, uint32_t id) { events_.schedule(at, id); }
+  /// Slot `id`'s next step, s.pending, completes at cycle `at`.
+  void schedule_step(uint64_t at, uint32_t id) {
+    // The step reads its node or triangles when it is handled, many events
+    // later: ask the host's caches for them now (no effect on any result).
+    const StepRequest& r = slots_[id].pending;
+    if (r.kind == StepRequest::Node) __builtin_prefetch(&bvh_.nodes[r.index]);
+    else if (r.kind == StepRequest::Leaf) __builtin_prefetch(&bvh_.tris[r.index]);
+    events_.schedule(at, id);
+  }
 
   void record(const char* name, uint32_t id, uint64_t start, uint64_t end) {
     if (!timeline_ || start < tl_first_ || start >= tl_end_) return;
@@ -125,7 +133,7 @@ class Engine final : public CycleEngine {
     counters_.emission_ops += ops;
     cost += uint64_t{ops} * cfg_.source.emission_op_cycles;
     counters_.source_busy_cycles += cost;
-    schedule(at + cost, source_id_);
+    events_.schedule(at + cost, source_id_);
   }
 
   /// The emitted ray is ready at `at`: dispatch it, or hold it until a slot frees.
@@ -170,7 +178,7 @@ class Engine final : public CycleEngine {
     s.pending = s.stepper.begin(s.er.ray, replayer_.any_hit(s.tr, s.er), ks.candidates, ks.traversal);
     const uint64_t issue = core.box.issue(at);  // the root box test: bounds latched with the ray
     record("box", id, issue, issue + core.box.latency());
-    schedule(issue + core.box.latency(), id);
+    schedule_step(issue + core.box.latency(), id);
   }
 
   // ---- a slot's steps ----
@@ -188,7 +196,7 @@ class Engine final : public CycleEngine {
         const uint64_t end = issue + core.box.latency();
         record("node", id, now, end);
         s.pending = s.stepper.node_step();
-        schedule(end, id);
+        schedule_step(end, id);
         return;
       }
       case StepRequest::Leaf: {
@@ -213,7 +221,7 @@ class Engine final : public CycleEngine {
         }
         record("leaf", id, now, end);
         s.pending = s.stepper.leaf_done();
-        schedule(end, id);
+        schedule_step(end, id);
         return;
       }
       case StepRequest::Refill: {
@@ -223,7 +231,7 @@ class Engine final : public CycleEngine {
         counters_.refill_wait_cycles += ready - now;
         record("refill", id, now, ready);
         s.pending = s.stepper.refilled();
-        schedule(ready, id);
+        schedule_step(ready, id);
         return;
       }
       case StepRequest::Done:
@@ -261,6 +269,7 @@ class Engine final : public CycleEngine {
 
   const HwConfig cfg_;
   FunctionalReplayer& replayer_;
+  const Bvh& bvh_;
   Memory& memory_;
   BvhAddressMap map_;
   RayFeed feed_;
