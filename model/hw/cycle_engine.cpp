@@ -75,6 +75,8 @@ class Engine final : public CycleEngine {
     uint64_t at;
     uint32_t id;
     while (!stopped_ && events_.take(limit, at, id)) {
+      const uint32_t next = events_.peek_same_cycle();
+      if (next < source_id_) prefetch_slot(slots_[next]);
       if (id == source_id_) source_ready(at);
       else step(id, at);
     }
@@ -98,10 +100,18 @@ class Engine final : public CycleEngine {
     uint32_t core;  ///< the core holding this slot
     StepRequest pending;
     uint64_t dispatched = 0;
-    BvhStepper<Tester> stepper;
+    BvhStepper<Tester> stepper;  // its traversal stack at its end
     TraceRay tr;
     EmittedRay er;
+    /// Bytes from the slot's start that a step reads: up to the stepper's stack.
+    static constexpr size_t kHotBytes = 32 + sizeof(BvhStepper<Tester>) - BvhStepper<Tester>::stack_host_bytes();
   };
+
+  /// Asks the host's caches for the part of `s` a step uses (not its stack).
+  static void prefetch_slot(const Slot& s) {
+    const char* p = reinterpret_cast<const char*>(&s);
+    for (size_t at = 0; at < Slot::kHotBytes; at += 64) __builtin_prefetch(p + at);
+  }
 
   /// Slot `id`'s next step, s.pending, completes at cycle `at`.
   void schedule_step(uint64_t at, uint32_t id) {

@@ -60,6 +60,10 @@ class EventWheel {
     return ring < over ? ring : over;
   }
 
+  /// Id of the event take() hands out next if it is in the cycle being handed
+  /// out, else kNone (lets the caller prefetch its state).
+  uint32_t peek_same_cycle() const { return batch_next_ < batch_end_ ? batch_[batch_next_] : kNone; }
+
   /// Takes the next event if its cycle is before `limit`: its id into `id`,
   /// its cycle into `at`. False (and nothing taken) otherwise.
   bool take(uint64_t limit, uint64_t& at, uint32_t& id) {
