@@ -100,6 +100,7 @@ class Engine final : public CycleEngine {
     uint32_t core;  ///< the core holding this slot
     StepRequest pending;
     uint64_t dispatched = 0;
+    uint64_t trace_index = 0;  ///< the ray's position in the feed
     BvhStepper<Tester> stepper;  // its traversal stack at its end
     TraceRay tr;
     EmittedRay er;
@@ -133,6 +134,7 @@ class Engine final : public CycleEngine {
   /// The source starts emitting the next trace ray at cycle `at`.
   void start_emission(uint64_t at) {
     if (!feed_(next_tr_)) return;  // end of the trace
+    next_index_ = fed_++;
     next_er_ = replayer_.emit(next_tr_);
     uint64_t cost = cfg_.source.issue_interval;
     if (next_tr_.sign < 0 && next_tr_.parent_prim >= 0) {
@@ -182,6 +184,7 @@ class Engine final : public CycleEngine {
     ++in_flight_;
     Slot& s = slots_[id];
     s.tr = next_tr_;
+    s.trace_index = next_index_;
     s.er = next_er_;
     s.dispatched = at;
     KindStats& ks = replayer_.stats().by_kind[static_cast<int>(s.tr.kind)];
@@ -253,7 +256,7 @@ class Engine final : public CycleEngine {
   void finish(uint32_t id, Core& core, uint64_t now) {
     Slot& s = slots_[id];
     const RayOutcome out = replayer_.conclude(s.tr, s.er, s.stepper.hit(), s.stepper.rejected());
-    if (sink_) sink_(s.tr, out, now);
+    if (sink_) sink_(s.tr, out, now, s.trace_index);
     HwCounters& c = counters_;
     const uint64_t latency = now - s.dispatched;
     c.slot_cycles += latency;
@@ -291,6 +294,7 @@ class Engine final : public CycleEngine {
   UnitTotals unit_totals_;
   std::vector<Slot> slots_;
   TraceRay next_tr_;
+  uint64_t next_index_ = 0, fed_ = 0;  // the held ray's trace index; rays read from the feed
   EmittedRay next_er_;
   bool blocked_ = false, stopped_ = false;
   uint64_t blocked_since_ = 0, in_flight_ = 0;
