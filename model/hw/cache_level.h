@@ -70,10 +70,14 @@ class CacheLevel {
   }
   /// The MSHR a miss arriving at `t` takes and when it can start.
   MissStart start_miss(uint64_t t) {
-    uint32_t best = 0;
-    for (uint32_t i = 1; i < fill_.size(); ++i)
-      if (fill_[i] < fill_[best]) best = i;
-    const uint64_t start = fill_[best] > t ? fill_[best] : t;
+    uint32_t best = 0;  // the first MSHR of the earliest free cycle (selects, no branches)
+    uint64_t free_at = fill_[0];
+    for (uint32_t i = 1; i < fill_.size(); ++i) {
+      const bool earlier = fill_[i] < free_at;
+      best = earlier ? i : best;
+      free_at = earlier ? fill_[i] : free_at;
+    }
+    const uint64_t start = free_at > t ? free_at : t;
     counters_.mshr_stall_cycles += start - t;
     return {best, start};
   }
