@@ -32,8 +32,8 @@ CycleBenchResult run_cycle_bench(const Scene& scene, const ReplayOptions& opt, c
       tr = rays[next++];
       return true;
     };
-    const hw::RayResultSink sink = [&](const TraceRay& tr, const RayOutcome& o, uint64_t) {
-      ours[static_cast<size_t>(tr.id)] = o.answer;
+    const hw::RayResultSink sink = [&](const TraceRay&, const RayOutcome& o, uint64_t, uint64_t index) {
+      ours[index] = o.answer;
     };
     const hw::CycleRunResult run = hw::run_cycle_replay(feed, scene, bvh, opt, cfg, sink, options);
     best_vbsim = std::min(best_vbsim, run.stats.wall_s);

@@ -128,6 +128,9 @@ class BvhStepper {
   uint64_t spills() const { return spills_; }      ///< entries pushed past the on-chip depth
   uint64_t refills() const { return refills_; }    ///< refill reads
   int onchip_depth() const { return onchip_depth_; }
+  /// Host bytes of the traversal stack, the stepper's last member (a timing
+  /// model may prefetch the stepper's other members before a step).
+  static constexpr size_t stack_host_bytes() { return sizeof(Entry) * kTraversalStackDepth; }
 
  private:
   StepRequest done() {
@@ -182,10 +185,10 @@ class BvhStepper {
   Hit best_;
   float tmax_ = 0.0f;
   BvhRef current_;
-  Entry stack_[kTraversalStackDepth];
   int sp_ = 0, onchip_ = 0, refill_count_ = 0;
   bool finished_ = false;
   uint64_t rejected_ = 0, spills_ = 0, refills_ = 0;
+  Entry stack_[kTraversalStackDepth];  // last: a step touches only its top, the rest stays cold
 };
 
 }  // namespace vbsim

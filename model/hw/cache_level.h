@@ -44,28 +44,71 @@ class CacheLevel {
     if (horizon >= next_fill_) retire_slow(horizon);
   }
   /// A request for `line` arriving at cycle `t` (counted).
-  Lookup lookup(uint64_t line, uint64_t t);
+  Lookup lookup(uint64_t line, uint64_t t) {
+    ++counters_.accesses;
+    // A line in flight is never in the tag array, so the order of the two checks is free.
+    if (tags_.touch(line)) {
+      ++counters_.hits;
+      return {Outcome::Hit, t + hit_latency_};
+    }
+    if (in_flight_ != 0) {
+      const uint32_t n = static_cast<uint32_t>(flight_line_.size());
+      uint32_t found = n;
+      for (uint32_t i = n; i-- > 0;) found = flight_line_[i] == line ? i : found;
+      if (found != n) {
+        const uint64_t fill = fill_[found];
+        if (t < fill) {
+          ++counters_.merges;
+          return {Outcome::Merge, fill};
+        }
+        ++counters_.hits;  // filled but not yet installed: present all the same
+        return {Outcome::Hit, t + hit_latency_};
+      }
+    }
+    ++counters_.misses;
+    return {Outcome::Miss, 0};
+  }
   /// The MSHR a miss arriving at `t` takes and when it can start.
-  MissStart start_miss(uint64_t t);
+  MissStart start_miss(uint64_t t) {
+    uint32_t best = 0;  // the first MSHR of the earliest free cycle (selects, no branches)
+    uint64_t free_at = fill_[0];
+    for (uint32_t i = 1; i < fill_.size(); ++i) {
+      const bool earlier = fill_[i] < free_at;
+      best = earlier ? i : best;
+      free_at = earlier ? fill_[i] : free_at;
+    }
+    const uint64_t start = free_at > t ? free_at : t;
+    counters_.mshr_stall_cycles += start - t;
+    return {best, start};
+  }
   /// Records the miss of `line` on MSHR `mshr`, its data filling at `fill`.
-  void hold(uint32_t mshr, uint64_t line, uint64_t fill);
+  void hold(uint32_t mshr, uint64_t line, uint64_t fill) {
+    if (flight_line_[mshr] != LruCache::kNoLine) {
+      tags_.install(flight_line_[mshr]);  // filled before this miss started: present now
+      --in_flight_;
+    }
+    flight_line_[mshr] = line;
+    fill_[mshr] = fill;
+    order_[mshr] = ++claims_;
+    ++in_flight_;
+    if (fill < next_fill_) next_fill_ = fill;
+  }
 
   uint32_t hit_latency() const { return hit_latency_; }
   const LevelCounters& counters() const { return counters_; }
   const LruCache& tags() const { return tags_; }
 
  private:
-  struct Mshr {
-    uint64_t line = LruCache::kNoLine;
-    uint64_t fill = 0;     // the cycle this MSHR frees (its line's fill cycle)
-    uint64_t order = 0;    // claim order: breaks ties between equal fill cycles
-    bool in_flight = false;  // line not yet installed in the tag array
-  };
   void retire_slow(uint64_t horizon);
 
   LruCache tags_;
   uint32_t hit_latency_;
-  std::vector<Mshr> mshrs_;
+  // The MSHRs, one entry each in every array:
+  std::vector<uint64_t> flight_line_;  // the line in flight (not yet in the tag array), or kNoLine
+  std::vector<uint64_t> fill_;         // the cycle the MSHR frees (its line's fill cycle)
+  std::vector<uint64_t> order_;        // claim order: breaks ties between equal fill cycles
+  std::vector<uint32_t> due_;          // scratch of retire_slow
+  uint32_t in_flight_ = 0;             // MSHRs whose line is in flight
   uint64_t claims_ = 0;
   uint64_t next_fill_ = ~uint64_t{0};  // earliest fill among MSHRs in flight
   LevelCounters counters_;

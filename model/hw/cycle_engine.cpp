@@ -7,20 +7,31 @@
 #include "datapath/bvh_stepper.h"
 #include "datapath/testers.h"
 #include "hw/bvh_address_map.h"
+#include "hw/event_wheel.h"
+#include "hw/memory_hierarchy.h"
 #include "hw/unit_pipelines.h"
 
 namespace vbsim::hw {
 
 namespace {
 
-// Event keys: (cycle << kIdBits) | id, so a min-heap of plain integers orders
-// events by cycle, then by id (slots before the source; deterministic).
-constexpr int kIdBits = 21;
-constexpr uint64_t kIdMask = (uint64_t{1} << kIdBits) - 1;
-constexpr uint32_t kSourceId = static_cast<uint32_t>(kIdMask);
+// Event ids: slots 0 .. n-1, the source n (after the slots within a cycle).
+constexpr uint32_t kMaxSlots = (1u << 24) - 2;
+
+/// The number of event ids for `cfg`: its slots and the source.
+uint32_t event_ids(const HwConfig& cfg) {
+  const uint64_t slots = uint64_t{cfg.cores} * cfg.slots_per_core;
+  if (slots > kMaxSlots) throw std::runtime_error("hw: too many slots");
+  return static_cast<uint32_t>(slots + 1);
+}
+
+/// Running totals of every core's pipelines, by kind.
+struct UnitTotals {
+  UnitCounters box, triangle, avoidance;
+};
 
 struct Core {
-  explicit Core(const HwConfig& c) : box(c.box), tri(c.triangle), avoid(c.avoidance) {}
+  Core(const HwConfig& c, UnitTotals& t) : box(c.box, t.box), tri(c.triangle, t.triangle), avoid(c.avoidance, t.avoidance) {}
   UnitPipelines box, tri, avoid;
   std::vector<uint32_t> free_slots;  ///< global slot ids
 };
@@ -35,46 +46,43 @@ uint32_t emission_ops(const SelfIntersectionMethod& m, const TraceRay& tr) {
   return ops;
 }
 
-template <class Tester>
+/// `Memory` is the port's concrete type when the engine knows it (IdealMemory,
+/// MemoryHierarchy: their reads are then direct calls), else MemoryPort.
+template <class Tester, class Memory>
 class Engine final : public CycleEngine {
  public:
-  Engine(const HwConfig& cfg, FunctionalReplayer& replayer, const Bvh& bvh, MemoryPort& memory, RayFeed feed,
+  Engine(const HwConfig& cfg, FunctionalReplayer& replayer, const Bvh& bvh, Memory& memory, RayFeed feed,
          RayResultSink sink)
-      : cfg_(cfg), replayer_(replayer), memory_(memory), map_(bvh, cfg.address_base), feed_(std::move(feed)),
+      : cfg_(cfg), replayer_(replayer), bvh_(bvh), memory_(memory), map_(bvh, cfg.address_base), feed_(std::move(feed)),
         sink_(std::move(sink)),
         avoidance_in_use_(replayer.options().method.validity_bit &&
                           replayer.options().method.avoidance.policy != AvoidancePolicy::SignOnly) {
     check_traversal_depth(bvh);
-    const uint32_t slots = cfg.cores * cfg.slots_per_core;
-    if (slots >= kSourceId) throw std::runtime_error("hw: too many slots");
+    const uint32_t slots = source_id_;
     cores_.reserve(cfg.cores);
     for (uint32_t c = 0; c < cfg.cores; ++c) {
-      cores_.emplace_back(cfg);
+      cores_.emplace_back(cfg, unit_totals_);
       for (uint32_t s = cfg.slots_per_core; s-- > 0;) cores_.back().free_slots.push_back(c * cfg.slots_per_core + s);
     }
     slots_.reserve(slots);
     for (uint32_t i = 0; i < slots; ++i)
-      slots_.push_back(std::make_unique<Slot>(bvh, replayer.filter(), static_cast<int>(cfg.stack_depth)));
+      slots_.emplace_back(bvh, replayer.filter(), static_cast<int>(cfg.stack_depth), i / cfg.slots_per_core);
     counters_.latency_histogram.assign(cfg.latency_buckets, 0);
     start_emission(0);
   }
 
   void advance(uint64_t limit) override {
-    while (!events_.empty() && !stopped_) {
-      const uint64_t key = events_.front();
-      const uint64_t at = key >> kIdBits;
-      if (at >= limit) return;
-      // The handled event stays at the top until the handler's first new
-      // event replaces it (one sift instead of a pop and a push).
-      replace_top_ = true;
-      const uint32_t id = static_cast<uint32_t>(key & kIdMask);
-      if (id == kSourceId) source_ready(at);
+    uint64_t at;
+    uint32_t id;
+    while (!stopped_ && events_.take(limit, at, id)) {
+      const uint32_t next = events_.peek_same_cycle();
+      if (next < source_id_) prefetch_slot(slots_[next]);
+      if (id == source_id_) source_ready(at);
       else step(id, at);
-      if (replace_top_) pop_top();
     }
   }
   bool finished() const override { return stopped_ || events_.empty(); }
-  uint64_t next_event_cycle() const override { return events_.empty() ? 0 : events_.front() >> kIdBits; }
+  uint64_t next_event_cycle() const override { return events_.empty() ? 0 : events_.next_cycle(); }
   void stop() override { stopped_ = true; }
   bool stopped() const override { return stopped_; }
   const HwCounters& counters() const override { return counters_; }
@@ -87,55 +95,38 @@ class Engine final : public CycleEngine {
 
  private:
   struct Slot {
-    Slot(const Bvh& bvh, const CandidateFilter& filter, int depth) : stepper(bvh, filter, depth) {}
-    BvhStepper<Tester> stepper;
-    TraceRay tr;
-    EmittedRay er;
+    Slot(const Bvh& bvh, const CandidateFilter& filter, int depth, uint32_t core_index)
+        : core(core_index), stepper(bvh, filter, depth) {}
+    uint32_t core;  ///< the core holding this slot
     StepRequest pending;
     uint64_t dispatched = 0;
+    uint64_t trace_index = 0;  ///< the ray's position in the feed
+    BvhStepper<Tester> stepper;  // its traversal stack at its end
+    TraceRay tr;
+    EmittedRay er;
+    /// Bytes from the slot's start that a step reads: up to the stepper's stack.
+    static constexpr size_t kHotBytes = 32 + sizeof(BvhStepper<Tester>) - BvhStepper<Tester>::stack_host_bytes();
   };
 
-  // ---- the event queue: a binary min-heap of keys in events_ ----
+  /// Asks the host's caches for the part of `s` a step uses (not its stack).
+  static void prefetch_slot(const Slot& s) {
+    const char* p = reinterpret_cast<const char*>(&s);
+    for (size_t at = 0; at < Slot::kHotBytes; at += 64) __builtin_prefetch(p + at);
+  }
 
-  void schedule(uint64_t at, uint32_t id) {
-    const uint64_t key = (at << kIdBits) | id;
-    if (replace_top_) {
-      replace_top_ = false;
-      sift_down(key);
-      return;
-    }
-    size_t i = events_.size();
-    events_.push_back(key);
-    while (i > 0 && events_[(i - 1) / 2] > key) {
-      events_[i] = events_[(i - 1) / 2];
-      i = (i - 1) / 2;
-    }
-    events_[i] = key;
-  }
-  void pop_top() {
-    replace_top_ = false;
-    const uint64_t last = events_.back();
-    events_.pop_back();
-    if (!events_.empty()) sift_down(last);
-  }
-  /// Puts `key` at the top and restores the heap order below it.
-  void sift_down(uint64_t key) {
-    const size_t n = events_.size();
-    size_t i = 0;
-    for (;;) {
-      size_t c = 2 * i + 1;
-      if (c >= n) break;
-      if (c + 1 < n && events_[c + 1] < events_[c]) ++c;
-      if (events_[c] >= key) break;
-      events_[i] = events_[c];
-      i = c;
-    }
-    events_[i] = key;
+  /// Slot `id`'s next step, s.pending, completes at cycle `at`.
+  void schedule_step(uint64_t at, uint32_t id) {
+    // The step reads its node or triangles when it is handled, many events
+    // later: ask the host's caches for them now (no effect on any result).
+    const StepRequest& r = slots_[id].pending;
+    if (r.kind == StepRequest::Node) __builtin_prefetch(&bvh_.nodes[r.index]);
+    else if (r.kind == StepRequest::Leaf) __builtin_prefetch(&bvh_.tris[r.index]);
+    events_.schedule(at, id);
   }
 
   void record(const char* name, uint32_t id, uint64_t start, uint64_t end) {
     if (!timeline_ || start < tl_first_ || start >= tl_end_) return;
-    timeline_->push_back({name, id / cfg_.slots_per_core, id % cfg_.slots_per_core, start, end, slots_[id]->tr.id});
+    timeline_->push_back({name, id / cfg_.slots_per_core, id % cfg_.slots_per_core, start, end, slots_[id].tr.id});
   }
 
   // ---- ray source and dispatcher ----
@@ -143,6 +134,7 @@ class Engine final : public CycleEngine {
   /// The source starts emitting the next trace ray at cycle `at`.
   void start_emission(uint64_t at) {
     if (!feed_(next_tr_)) return;  // end of the trace
+    next_index_ = fed_++;
     next_er_ = replayer_.emit(next_tr_);
     uint64_t cost = cfg_.source.issue_interval;
     if (next_tr_.sign < 0 && next_tr_.parent_prim >= 0) {
@@ -153,7 +145,7 @@ class Engine final : public CycleEngine {
     counters_.emission_ops += ops;
     cost += uint64_t{ops} * cfg_.source.emission_op_cycles;
     counters_.source_busy_cycles += cost;
-    schedule(at + cost, kSourceId);
+    events_.schedule(at + cost, source_id_);
   }
 
   /// The emitted ray is ready at `at`: dispatch it, or hold it until a slot frees.
@@ -190,23 +182,24 @@ class Engine final : public CycleEngine {
     const uint32_t id = core.free_slots.back();
     core.free_slots.pop_back();
     ++in_flight_;
-    Slot& s = *slots_[id];
+    Slot& s = slots_[id];
     s.tr = next_tr_;
+    s.trace_index = next_index_;
     s.er = next_er_;
     s.dispatched = at;
     KindStats& ks = replayer_.stats().by_kind[static_cast<int>(s.tr.kind)];
     s.pending = s.stepper.begin(s.er.ray, replayer_.any_hit(s.tr, s.er), ks.candidates, ks.traversal);
     const uint64_t issue = core.box.issue(at);  // the root box test: bounds latched with the ray
     record("box", id, issue, issue + core.box.latency());
-    schedule(issue + core.box.latency(), id);
+    schedule_step(issue + core.box.latency(), id);
   }
 
   // ---- a slot's steps ----
 
   void step(uint32_t id, uint64_t now) {
-    Slot& s = *slots_[id];
-    Core& core = cores_[id / cfg_.slots_per_core];
-    const int core_index = static_cast<int>(id / cfg_.slots_per_core);
+    Slot& s = slots_[id];
+    Core& core = cores_[s.core];
+    const int core_index = static_cast<int>(s.core);
     switch (s.pending.kind) {
       case StepRequest::Node: {
         const uint64_t ready = memory_.read(core_index, map_.node(s.pending.index), BvhAddressMap::kNodeBytes, now);
@@ -216,7 +209,7 @@ class Engine final : public CycleEngine {
         const uint64_t end = issue + core.box.latency();
         record("node", id, now, end);
         s.pending = s.stepper.node_step();
-        schedule(end, id);
+        schedule_step(end, id);
         return;
       }
       case StepRequest::Leaf: {
@@ -241,7 +234,7 @@ class Engine final : public CycleEngine {
         }
         record("leaf", id, now, end);
         s.pending = s.stepper.leaf_done();
-        schedule(end, id);
+        schedule_step(end, id);
         return;
       }
       case StepRequest::Refill: {
@@ -251,7 +244,7 @@ class Engine final : public CycleEngine {
         counters_.refill_wait_cycles += ready - now;
         record("refill", id, now, ready);
         s.pending = s.stepper.refilled();
-        schedule(ready, id);
+        schedule_step(ready, id);
         return;
       }
       case StepRequest::Done:
@@ -261,9 +254,9 @@ class Engine final : public CycleEngine {
   }
 
   void finish(uint32_t id, Core& core, uint64_t now) {
-    Slot& s = *slots_[id];
+    Slot& s = slots_[id];
     const RayOutcome out = replayer_.conclude(s.tr, s.er, s.stepper.hit(), s.stepper.rejected());
-    if (sink_) sink_(s.tr, out, now);
+    if (sink_) sink_(s.tr, out, now, s.trace_index);
     HwCounters& c = counters_;
     const uint64_t latency = now - s.dispatched;
     c.slot_cycles += latency;
@@ -274,7 +267,9 @@ class Engine final : public CycleEngine {
     ++c.rays;
     c.cycles = now;
     c.spills += s.stepper.spills();
-    update_unit_totals();
+    c.box = unit_totals_.box;
+    c.triangle = unit_totals_.triangle;
+    c.avoidance = unit_totals_.avoidance;
     --in_flight_;
     core.free_slots.push_back(id);
     if (blocked_) {  // the source's held ray takes a slot now
@@ -285,31 +280,21 @@ class Engine final : public CycleEngine {
     }
   }
 
-  void update_unit_totals() {
-    HwCounters& c = counters_;
-    c.box = c.triangle = c.avoidance = UnitCounters{};
-    for (const Core& core : cores_) {
-      c.box.ops += core.box.ops();
-      c.box.wait_cycles += core.box.wait_cycles();
-      c.triangle.ops += core.tri.ops();
-      c.triangle.wait_cycles += core.tri.wait_cycles();
-      c.avoidance.ops += core.avoid.ops();
-      c.avoidance.wait_cycles += core.avoid.wait_cycles();
-    }
-  }
-
   const HwConfig cfg_;
   FunctionalReplayer& replayer_;
-  MemoryPort& memory_;
+  const Bvh& bvh_;
+  Memory& memory_;
   BvhAddressMap map_;
   RayFeed feed_;
   RayResultSink sink_;
   bool avoidance_in_use_;
   std::vector<Core> cores_;
-  std::vector<std::unique_ptr<Slot>> slots_;
-  std::vector<uint64_t> events_;
-  bool replace_top_ = false;
+  EventWheel events_{event_ids(cfg_)};
+  uint32_t source_id_ = event_ids(cfg_) - 1;
+  UnitTotals unit_totals_;
+  std::vector<Slot> slots_;
   TraceRay next_tr_;
+  uint64_t next_index_ = 0, fed_ = 0;  // the held ray's trace index; rays read from the feed
   EmittedRay next_er_;
   bool blocked_ = false, stopped_ = false;
   uint64_t blocked_since_ = 0, in_flight_ = 0;
@@ -319,21 +304,30 @@ class Engine final : public CycleEngine {
   uint64_t tl_first_ = 0, tl_end_ = 0;
 };
 
+template <class Tester>
+std::unique_ptr<CycleEngine> make_for_tester(const HwConfig& cfg, FunctionalReplayer& replayer, const Bvh& bvh,
+                                             MemoryPort& memory, RayFeed feed, RayResultSink sink) {
+  if (auto* ideal = dynamic_cast<IdealMemory*>(&memory))
+    return std::make_unique<Engine<Tester, IdealMemory>>(cfg, replayer, bvh, *ideal, std::move(feed),
+                                                         std::move(sink));
+  if (auto* caches = dynamic_cast<MemoryHierarchy*>(&memory))
+    return std::make_unique<Engine<Tester, MemoryHierarchy>>(cfg, replayer, bvh, *caches, std::move(feed),
+                                                             std::move(sink));
+  return std::make_unique<Engine<Tester, MemoryPort>>(cfg, replayer, bvh, memory, std::move(feed), std::move(sink));
+}
+
 }  // namespace
 
 std::unique_ptr<CycleEngine> make_cycle_engine(const HwConfig& cfg, FunctionalReplayer& replayer, const Bvh& bvh,
                                                MemoryPort& memory, RayFeed feed, RayResultSink sink) {
   switch (replayer.options().tester) {
     case TesterKind::MollerTrumbore:
-      return std::make_unique<Engine<MollerTrumboreTester>>(cfg, replayer, bvh, memory, std::move(feed),
-                                                            std::move(sink));
+      return make_for_tester<MollerTrumboreTester>(cfg, replayer, bvh, memory, std::move(feed), std::move(sink));
     case TesterKind::PbrtWatertight:
-      return std::make_unique<Engine<PbrtWatertightTester>>(cfg, replayer, bvh, memory, std::move(feed),
-                                                            std::move(sink));
+      return make_for_tester<PbrtWatertightTester>(cfg, replayer, bvh, memory, std::move(feed), std::move(sink));
     case TesterKind::ThreeHalfPlane:
     default:
-      return std::make_unique<Engine<ThreeHalfPlaneTester>>(cfg, replayer, bvh, memory, std::move(feed),
-                                                            std::move(sink));
+      return make_for_tester<ThreeHalfPlaneTester>(cfg, replayer, bvh, memory, std::move(feed), std::move(sink));
   }
 }
 

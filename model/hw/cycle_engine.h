@@ -27,8 +27,10 @@ namespace vbsim::hw {
 
 /// Gives the next trace ray; false at the end of the trace.
 using RayFeed = std::function<bool(TraceRay&)>;
-/// Receives every finished ray, in completion order (may be empty).
-using RayResultSink = std::function<void(const TraceRay&, const RayOutcome&, uint64_t finish_cycle)>;
+/// Receives every finished ray, in completion order (may be empty);
+/// `trace_index` is the ray's position in the feed (0 for the first ray).
+using RayResultSink =
+    std::function<void(const TraceRay&, const RayOutcome&, uint64_t finish_cycle, uint64_t trace_index)>;
 
 /// One busy interval of a unit or slot, for the timeline (see set_timeline_window).
 struct TimelineEvent {

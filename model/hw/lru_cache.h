@@ -3,8 +3,9 @@
 // and miss limits live in the memory hierarchy around it.
 //
 // Lines are numbered by `addr / line_bytes`; a line lives in set
-// `line % sets`. Storage is flat: one tag and one age stamp per way, a set's ways adjacent, no
-// allocation after construction.
+// `line % sets`. Storage is flat, no allocation after construction: a set is
+// its `ways` lines side by side, most recently used first (empty ways, kNoLine,
+// last), so a hit moves its line to the front and a fill evicts the last one.
 #pragma once
 #include <cstddef>
 #include <cstdint>
@@ -20,13 +21,26 @@ class LruCache {
   LruCache(uint32_t sets, uint32_t ways);
 
   /// True when `line` is present; a hit makes it the most recently used of its set.
-  bool touch(uint64_t line);
+  bool touch(uint64_t line) {
+    uint64_t* set = set_at(line);
+    const uint32_t w = find_way(set, line);
+    if (w == ways_) return false;
+    for (uint32_t i = w; i > 0; --i) set[i] = set[i - 1];  // the line becomes the most recent
+    set[0] = line;
+    return true;
+  }
   /// True when `line` is present; changes nothing.
-  bool contains(uint64_t line) const;
+  bool contains(uint64_t line) const { return find_way(set_at(line), line) != ways_; }
   /// Puts `line` (not present) into its set as the most recently used line,
   /// replacing an empty way or else the least recently used line. Returns the
   /// line it replaced, or kNoLine.
-  uint64_t install(uint64_t line);
+  uint64_t install(uint64_t line) {
+    uint64_t* set = set_at(line);
+    const uint64_t replaced = set[ways_ - 1];  // the least recent line, or an empty way
+    for (uint32_t i = ways_ - 1; i > 0; --i) set[i] = set[i - 1];
+    set[0] = line;
+    return replaced;
+  }
 
   uint32_t sets() const { return sets_; }
   uint32_t ways() const { return ways_; }
@@ -35,15 +49,19 @@ class LruCache {
   uint32_t set_of(uint64_t line) const {
     return static_cast<uint32_t>(set_mask_ ? (line & set_mask_) : (sets_ == 1 ? 0 : line % sets_));
   }
+  uint64_t* set_at(uint64_t line) { return &lines_[static_cast<size_t>(set_of(line)) * ways_]; }
+  const uint64_t* set_at(uint64_t line) const { return &lines_[static_cast<size_t>(set_of(line)) * ways_]; }
+  /// Way of `line` in `set`, or ways_: every way is compared (no early exit, so
+  /// no branch depends on where the line is).
+  uint32_t find_way(const uint64_t* set, uint64_t line) const {
+    uint32_t found = ways_;
+    for (uint32_t w = ways_; w-- > 0;) found = set[w] == line ? w : found;
+    return found;
+  }
 
   uint32_t sets_, ways_;
   uint64_t set_mask_;            // sets - 1 when sets is a power of two > 1, else 0
-  uint64_t clock_ = 0;           // touch counter: a larger stamp is more recent
-  struct Way {
-    uint64_t line = kNoLine;  // kNoLine when empty
-    uint64_t stamp = 0;       // last touch
-  };
-  std::vector<Way> ways_of_sets_;  // sets * ways, a set's ways side by side
+  std::vector<uint64_t> lines_;  // sets * ways; per set in recency order, kNoLine when empty
 };
 
 }  // namespace vbsim::hw

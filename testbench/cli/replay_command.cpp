@@ -5,9 +5,11 @@
 #include <csignal>
 #include <fstream>
 #include <iostream>
+#include <memory>
 #include <unistd.h>
 
 #include "hw/cycle_replay.h"
+#include "hw/trace_order_buffer.h"
 
 #include "commands.h"
 #include "method_options.h"
@@ -52,11 +54,15 @@ ReplayStats run_cycle_mode(const ReplayArgs& a, const ReplayOptions& opt, TraceS
   run.timeline = a.timeline;
   run.timeline_first = a.timeline_start;
   run.timeline_cycles = a.timeline_cycles;
-  const hw::RayResultSink sink = [hits](const TraceRay& tr, const RayOutcome& out, uint64_t) {
-    *hits << hit_json_line(tr, out);
+  // Rays finish out of order; the hits file lists them in trace order, as the functional replay does.
+  std::unique_ptr<hw::TraceOrderBuffer> ordered;
+  if (hits) ordered = std::make_unique<hw::TraceOrderBuffer>(*hits);
+  const hw::RayResultSink sink = [&ordered](const TraceRay& tr, const RayOutcome& out, uint64_t, uint64_t index) {
+    ordered->put(index, hit_json_line(tr, out));
   };
   hw::CycleRunResult r = hw::run_cycle_replay([&source](TraceRay& tr) { return source.next(tr); }, sb.scene, sb.bvh,
                                               opt, cfg, hits ? sink : hw::RayResultSink{}, run);
+  if (ordered) ordered->flush();  // a stopped run: the finished rays after the first dropped one
   if (progress) fmt::print(stderr, "\n");
   hw = std::move(r.hw);
   table = std::move(r.table);

@@ -72,7 +72,7 @@ TEST_CASE("cycle-level hits equal functional hits on every committed trace", "[c
     auto src = open_trace(path);
     src->set_triangle_count(sb.scene.size());
     std::map<int64_t, Answer> got;
-    const hw::RayResultSink sink = [&](const TraceRay& r, const RayOutcome& out, uint64_t) {
+    const hw::RayResultSink sink = [&](const TraceRay& r, const RayOutcome& out, uint64_t, uint64_t) {
       got[r.id] = {out.hit.prim, out.hit.t, out.verdict, out.rejected};
     };
     const hw::CycleRunResult run = hw::run_cycle_replay([&](TraceRay& r) { return src->next(r); }, sb.scene, sb.bvh,

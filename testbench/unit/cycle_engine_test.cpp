@@ -36,7 +36,7 @@ Run run_rays(const std::vector<TraceRay>& rays, const Scene& scene, const Bvh& b
     tr = rays[next++];
     return true;
   };
-  const RayResultSink sink = [&](const TraceRay& tr, const RayOutcome& out, uint64_t cycle) {
+  const RayResultSink sink = [&](const TraceRay& tr, const RayOutcome& out, uint64_t cycle, uint64_t) {
     run.rays[tr.id] = {out.hit.prim, cycle};
   };
   CycleRunOptions options;
