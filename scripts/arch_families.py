@@ -39,9 +39,12 @@ def sample(traces, most):
     return [traces[round(i * (len(traces) - 1) / (most - 1))] for i in range(most)]
 
 
-def family_traces(run, vbsim, work, spec, scenarios, root):
-    """[(family name, sampled traces, number of traces in the family)]."""
-    folders = [generate_family(run, vbsim, work, s, spec["rays"], spec["seed"]) for s in scenarios]
+def family_traces(run, vbsim, work, spec, scenarios, root, folders=None):
+    """[(family name, sampled traces, number of traces in the family)]: the
+    given family folders (as `vbsim score` scored them), or else each scenario
+    generated small."""
+    if not folders:
+        folders = [generate_family(run, vbsim, work, s, spec["rays"], spec["seed"]) for s in scenarios]
     families = []
     for folder in folders:
         traces = sorted(glob.glob(os.path.join(folder, "*.jsonl")))

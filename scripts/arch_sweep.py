@@ -109,6 +109,9 @@ def main():
     ap.add_argument("--results", default=os.path.join(ROOT, "build", "results"), help="JSON results")
     ap.add_argument("--jobs", type=int, default=os.cpu_count() or 2)
     ap.add_argument("--fresh", action="store_true", help="rerun points already in the cache")
+    ap.add_argument("--families", nargs="*",
+                    help="measure the methods' cycles on these scenario folders (as scored by vbsim score, "
+                         "so the rows join with its table) instead of small generated ones")
     ap.add_argument("--list", action="store_true", help="list the sweeps and exit")
     args = ap.parse_args()
 
@@ -140,7 +143,8 @@ def main():
     families, f_points, f_labels = [], [], []
     if family_spec:
         scenarios = family_spec.get("scenarios") or run([vbsim, "scenarios", "--names"]).split()
-        families = arch_families.family_traces(run, vbsim, args.work, family_spec, scenarios, ROOT)
+        families = arch_families.family_traces(run, vbsim, args.work, family_spec, scenarios, ROOT,
+                                               args.families)
         f_points, f_labels = arch_families.family_points(families, family_spec)
     everything = points + p_points + f_points
     print(f"arch_sweep: {len(everything)} points ({len(points)} sweep, {len(p_points)} preset, "

@@ -5,9 +5,13 @@
 #     families, one per protocol) and scores all of them with every method and
 #     all three testers (`vbsim score`); the full table also goes to
 #     build/results/accuracy.json;
-#  2. pareto.md and pareto-*.png: speed against accuracy (scripts/pareto.py);
-#  3. stability.md, sweep-*.png, sweeps.csv: stability sweeps (scripts/sweep.py);
-#  4. montage.png: every method rendered on the failure scenes
+#  2. architecture.md and arch-*.png: the cycle-level model swept over its
+#     knobs, the presets' predictions, and every method's cycles per ray on the
+#     same scenario families (scripts/arch_sweep.py);
+#  3. pareto.md and pareto-*.png: speed against accuracy, with those cycles per
+#     ray on one cost axis (scripts/pareto.py);
+#  4. stability.md, sweep-*.png, sweeps.csv: stability sweeps (scripts/sweep.py);
+#  5. montage.png: every method rendered on the failure scenes
 #     (scripts/make_montage.py).
 #
 #   scripts/make_results.sh [--rays N] [--seed S]
@@ -71,7 +75,10 @@ done
   --regenerate-with "scripts/make_results.sh${args[*]:+ ${args[*]}}"
 echo "make_results.sh: wrote docs/results/accuracy.md and $out/accuracy.json" >&2
 
-/usr/bin/python3 scripts/pareto.py --score "$out/accuracy.json" --out docs/results
+/usr/bin/python3 scripts/arch_sweep.py --vbsim "$vbsim" --families "${dirs[@]}" --out docs/results \
+  --results "$out"
+/usr/bin/python3 scripts/pareto.py --score "$out/accuracy.json" --cycles "$out/method_cycles.json" \
+  --out docs/results
 /usr/bin/python3 scripts/sweep.py --vbsim "$vbsim" --work "$out/sweeps" --out docs/results
 /usr/bin/python3 scripts/make_montage.py
 echo "make_results.sh: every result in docs/results/ regenerated" >&2

@@ -74,13 +74,13 @@ def pareto_front(points, cost):
 
 
 AXES = [("ops", "operations per ray (method only)"), ("bits", "bits per ray in flight"),
-        ("us", "functional replay, microseconds per ray"), ("cycles", "cycles per ray (cycle-level model)")]
+        ("us", "functional replay, microseconds per ray"), ("cycles", "cycles per ray, cycle-level model (small preset)")]
 
 
 def plot_family(family, points, path):
     """One panel per cost axis; each method keeps its colour and marker across
     panels, named once in a legend under the panels."""
-    axes = [(k, label) for k, label in AXES if all(k in p for p in points)]
+    axes = [(k, label) for k, label in AXES if any(k in p for p in points)]
     fig, panels = plt.subplots(1, len(axes), figsize=(4.6 * len(axes), 5.4), dpi=100, squeeze=False)
     floor = 0.3 / max(max(p["scored"] for p in points), 1)
     lowest = min([p["error"] for p in points if p["error"] > 0] + [1.0])
@@ -88,9 +88,11 @@ def plot_family(family, points, path):
     markers = "osD^v<>phX*"
     for ax, (key, label) in zip(panels[0], axes):
         for i, p in enumerate(points):
+            if key not in p:  # a method the cycle-level runs did not measure
+                continue
             ax.scatter(p[key], max(p["error"], floor), s=28, color=colours[i % 20],
                        marker=markers[i % len(markers)], zorder=3, label=p["method"])
-        front = pareto_front(points, key)
+        front = pareto_front([p for p in points if key in p], key)
         ax.step([p[key] for p in front], [max(p["error"], floor) for p in front], where="post",
                 color="tab:red", linewidth=1.0, zorder=2)
         ax.axhline(floor, color="0.6", linewidth=0.8, linestyle=":")
@@ -147,7 +149,7 @@ def main():
         for key, label in AXES:
             if key in keys:
                 front = ", ".join(f"`{p['method']}` ({p[key]:.3g}, {p['errors']} errors)"
-                                  for p in pareto_front(points, key))
+                                  for p in pareto_front([p for p in points if key in p], key))
                 lines.append(f"- front on {label}: {front}")
         lines.append("")
     with open(os.path.join(args.out, "pareto.md"), "w") as f:
