@@ -183,6 +183,8 @@ def main():
     command = "/usr/bin/python3 scripts/arch_sweep.py" + (
         f" --definition {args.definition}" if args.definition else "") + (
         " --only " + " ".join(args.only) if args.only else "")
+    if args.families:  # the scored families of make_results.sh, which runs this
+        command = "scripts/make_results.sh (which runs " + command + " --families DIR...)"
     rays = rows[0]["rays"] if rows else 0
     intro = [f"Sweep trace: `{os.path.relpath(trace, ROOT)}` ({rays} rays, "
              f"`vbsim gen {definition['trace'].get('scenario', '')} --rays {definition['trace'].get('rays', '')} "
