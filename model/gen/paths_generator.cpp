@@ -86,12 +86,7 @@ class PathBuilder {
 
     TraceRay child;
     child.parent = parent.id;
-    child.parent_prim = h.prim;
-    child.has_parent_t = true;
-    child.parent_t = h.t;
-    child.has_parent_uv = true;
-    child.parent_u = h.u;
-    child.parent_v = h.v;
+    child.set_parent_hit(h.prim, h.t, h.u, h.v);
     if (scene_.has_normals()) {
       child.has_parent_ns = true;
       child.parent_ns = to_f(ns);

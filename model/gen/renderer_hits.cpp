@@ -39,12 +39,7 @@ TraceRay child_at_hit(const TraceRay& parent, const Hit& h, const Scene& scene, 
                                           : hit_point_barycentric(tri, h.u, h.v);
   c.d = d;
   c.tmax = tmax;
-  c.parent_prim = h.prim;
-  c.has_parent_t = true;
-  c.parent_t = h.t;
-  c.has_parent_uv = true;
-  c.parent_u = h.u;
-  c.parent_v = h.v;
+  c.set_parent_hit(h.prim, h.t, h.u, h.v);
   if (scene.has_normals()) {
     c.has_parent_ns = true;
     c.parent_ns = normalize(scene.shading_normal(h.prim, h.u, h.v));

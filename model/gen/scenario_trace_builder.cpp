@@ -62,12 +62,7 @@ void ScenarioTraceBuilder::child(const SpawnPoint& s, RayKind kind, Vec3f d, flo
   c.o = s.p;
   c.d = d;
   c.tmax = tmax;
-  c.parent_prim = s.prim;
-  c.has_parent_t = true;
-  c.parent_t = s.t;
-  c.has_parent_uv = true;
-  c.parent_u = s.u;
-  c.parent_v = s.v;
+  c.set_parent_hit(s.prim, s.t, s.u, s.v);
   c.sign = static_cast<int8_t>(parent_sign_bit(c, scene_));
   rays_.push_back(c);
 }

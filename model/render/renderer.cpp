@@ -65,12 +65,7 @@ class PixelTracer {
 
     TraceRay child;
     child.parent = in.id;
-    child.parent_prim = h.prim;
-    child.has_parent_t = true;
-    child.parent_t = h.t;
-    child.has_parent_uv = true;
-    child.parent_u = h.u;
-    child.parent_v = h.v;
+    child.set_parent_hit(h.prim, h.t, h.u, h.v);
     child.o = hit_point_barycentric(tri, h.u, h.v);
     Vec3f ns = ng_in;
     if (scene_.has_normals()) {

@@ -38,6 +38,16 @@ struct TraceRay {
   float parent_u = 0.0f, parent_v = 0.0f;
   bool has_parent_ns = false;
   Vec3f parent_ns;
+
+  /// Records where the parent ray hit: triangle `prim` at distance `t`, barycentrics (u, v).
+  void set_parent_hit(int32_t prim, float t, float u, float v) {
+    parent_prim = prim;
+    has_parent_t = true;
+    parent_t = t;
+    has_parent_uv = true;
+    parent_u = u;
+    parent_v = v;
+  }
   int8_t sign = -1;  ///< 0 or 1 when given, -1 when absent (computed from the scene)
   bool has_expect = false;
   int32_t expect_prim = -1;  ///< -1: the exact answer is a miss
