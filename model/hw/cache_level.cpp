@@ -29,7 +29,6 @@ void CacheLevel::retire_slow(uint64_t horizon) {
     tags_.install(flight_line_[i]);
     flight_line_[i] = LruCache::kNoLine;
   }
-  in_flight_ -= static_cast<uint32_t>(due_.size());
   next_fill_ = ~uint64_t{0};
   for (uint32_t i = 0; i < flight_line_.size(); ++i)
     if (flight_line_[i] != LruCache::kNoLine && fill_[i] < next_fill_) next_fill_ = fill_[i];

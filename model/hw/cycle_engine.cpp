@@ -99,9 +99,9 @@ class Engine final : public CycleEngine {
         : core(core_index), stepper(bvh, filter, depth) {}
     uint32_t core;  ///< the core holding this slot
     StepRequest pending;
+    BvhStepper<Tester> stepper;  // its traversal stack at its end
     uint64_t dispatched = 0;
     uint64_t trace_index = 0;  ///< the ray's position in the feed
-    BvhStepper<Tester> stepper;  // its traversal stack at its end
     TraceRay tr;
     EmittedRay er;
     /// Bytes from the slot's start that a step reads: up to the stepper's stack.
