@@ -34,7 +34,7 @@
 namespace vbsim {
 
 struct StepRequest {
-  enum Kind : uint8_t { Node, Leaf, Refill, Done };
+  enum Kind : uint32_t { Node, Leaf, Refill, Done };  // 32 bits: a request returns in two registers
   Kind kind = Done;
   uint32_t index = 0;  ///< Node: node index; Leaf: first triangle; Refill: first stack entry to read
   uint32_t count = 0;  ///< Leaf: triangles; Refill: entries to read
