@@ -34,7 +34,7 @@
 namespace vbsim {
 
 struct StepRequest {
-  enum Kind : uint8_t { Node, Leaf, Refill, Done };
+  enum Kind : uint32_t { Node, Leaf, Refill, Done };  // 32 bits: a request returns in two registers
   Kind kind = Done;
   uint32_t index = 0;  ///< Node: node index; Leaf: first triangle; Refill: first stack entry to read
   uint32_t count = 0;  ///< Leaf: triangles; Refill: entries to read
@@ -56,7 +56,7 @@ class BvhStepper {
 
   /// `bvh` and `filter` must outlive the stepper; onchip_depth >= 1.
   BvhStepper(const Bvh& bvh, const CandidateFilter& filter, int onchip_depth)
-      : bvh_(&bvh), filter_(&filter), onchip_depth_(onchip_depth < 1 ? 1 : onchip_depth) {}
+      : bvh_(&bvh), onchip_depth_(onchip_depth < 1 ? 1 : onchip_depth), filter_(&filter) {}
 
   /// Latches `ray` and tests the root box. Counters go to `cc` and `tc`
   /// (which must outlive the search).
@@ -173,21 +173,26 @@ class BvhStepper {
     float t;
   };
 
-  const Bvh* bvh_;
-  const CandidateFilter* filter_;
-  int onchip_depth_;
-  Ray ray_;
-  bool any_hit_ = false;
-  CandidateCounters* cc_ = nullptr;
-  TraversalCounters* tc_ = nullptr;
-  std::optional<Tester> tester_;
+  // What node_step and pop use first, side by side (a timing model interleaves
+  // many steppers, so each step finds them in as few host cache lines as possible);
+  // then what the triangle steps and the ray's end use.
   std::optional<RayBoxTester> box_;
-  Hit best_;
+  const Bvh* bvh_;
+  TraversalCounters* tc_ = nullptr;
   float tmax_ = 0.0f;
   BvhRef current_;
-  int sp_ = 0, onchip_ = 0, refill_count_ = 0;
+  int sp_ = 0, onchip_ = 0;
+  int onchip_depth_;
+  int refill_count_ = 0;
   bool finished_ = false;
-  uint64_t rejected_ = 0, spills_ = 0, refills_ = 0;
+  bool any_hit_ = false;
+  uint64_t spills_ = 0;
+  const CandidateFilter* filter_;
+  CandidateCounters* cc_ = nullptr;
+  Hit best_;
+  uint64_t rejected_ = 0, refills_ = 0;
+  Ray ray_;
+  std::optional<Tester> tester_;
   Entry stack_[kTraversalStackDepth];  // last: a step touches only its top, the rest stays cold
 };
 

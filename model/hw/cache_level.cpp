@@ -12,9 +12,28 @@ CacheLevel::CacheLevel(const CacheConfig& config)
 }
 
 void CacheLevel::retire_slow(uint64_t horizon) {
-  // The fills due by `horizon`, installed in (fill cycle, claim order) order.
+  // One pass: the fills due by `horizon` (usually one) and the earliest fill after it.
+  const uint32_t n = static_cast<uint32_t>(flight_line_.size());
+  uint32_t due = 0, last_due = 0;
+  uint64_t later = ~uint64_t{0};
+  for (uint32_t i = 0; i < n; ++i) {
+    if (flight_line_[i] == LruCache::kNoLine) continue;
+    if (fill_[i] <= horizon) {
+      ++due;
+      last_due = i;
+    } else if (fill_[i] < later) {
+      later = fill_[i];
+    }
+  }
+  next_fill_ = later;
+  if (due == 1) {
+    tags_.install(flight_line_[last_due]);
+    flight_line_[last_due] = LruCache::kNoLine;
+    return;
+  }
+  // Several: installed in (fill cycle, claim order) order.
   due_.clear();
-  for (uint32_t i = 0; i < flight_line_.size(); ++i)
+  for (uint32_t i = 0; i < n; ++i)
     if (flight_line_[i] != LruCache::kNoLine && fill_[i] <= horizon) {
       size_t at = due_.size();
       due_.push_back(i);
@@ -29,10 +48,6 @@ void CacheLevel::retire_slow(uint64_t horizon) {
     tags_.install(flight_line_[i]);
     flight_line_[i] = LruCache::kNoLine;
   }
-  in_flight_ -= static_cast<uint32_t>(due_.size());
-  next_fill_ = ~uint64_t{0};
-  for (uint32_t i = 0; i < flight_line_.size(); ++i)
-    if (flight_line_[i] != LruCache::kNoLine && fill_[i] < next_fill_) next_fill_ = fill_[i];
 }
 
 }  // namespace vbsim::hw

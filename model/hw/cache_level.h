@@ -26,13 +26,14 @@ struct LevelCounters {
 class CacheLevel {
  public:
   enum class Outcome { Hit, Merge, Miss };
-  struct Lookup {
+  /// What a request met. Hit: ready = t + hit latency. Merge: ready = the fill
+  /// cycle of the miss in flight. Miss: the MSHR it takes (the first of the
+  /// earliest free cycle) and the cycle it leaves this level (>= its arrival).
+  struct Access {
     Outcome outcome;
-    uint64_t ready;  ///< Hit: t + hit latency; Merge: the fill cycle; Miss: unused
-  };
-  struct MissStart {
-    uint32_t mshr;   ///< the MSHR the miss holds
-    uint64_t start;  ///< cycle the miss leaves this level (>= arrival)
+    uint64_t ready;  ///< Hit, Merge
+    uint32_t mshr;   ///< Miss
+    uint64_t start;  ///< Miss
   };
 
   /// `config` is valid (make_memory checks it).
@@ -43,54 +44,47 @@ class CacheLevel {
   void retire(uint64_t horizon) {
     if (horizon >= next_fill_) retire_slow(horizon);
   }
-  /// A request for `line` arriving at cycle `t` (counted).
-  Lookup lookup(uint64_t line, uint64_t t) {
+  /// A request for `line` arriving at cycle `t` (counted; a miss's MSHR wait too).
+  /// A miss must be followed by hold() on the MSHR it names.
+  Access access(uint64_t line, uint64_t t) {
     ++counters_.accesses;
     // A line in flight is never in the tag array, so the order of the two checks is free.
     if (tags_.touch(line)) {
       ++counters_.hits;
-      return {Outcome::Hit, t + hit_latency_};
+      return {Outcome::Hit, t + hit_latency_, 0, 0};
     }
-    if (in_flight_ != 0) {
-      const uint32_t n = static_cast<uint32_t>(flight_line_.size());
-      uint32_t found = n;
-      for (uint32_t i = n; i-- > 0;) found = flight_line_[i] == line ? i : found;
-      if (found != n) {
-        const uint64_t fill = fill_[found];
-        if (t < fill) {
-          ++counters_.merges;
-          return {Outcome::Merge, fill};
-        }
-        ++counters_.hits;  // filled but not yet installed: present all the same
-        return {Outcome::Hit, t + hit_latency_};
+    // One pass over the MSHRs: the one holding `line`, and the first of the
+    // earliest free cycle (selects, no branches).
+    const uint32_t n = static_cast<uint32_t>(fill_.size());
+    uint32_t found = n, best = 0;
+    uint64_t free_at = ~uint64_t{0};
+    for (uint32_t i = n; i-- > 0;) {
+      found = flight_line_[i] == line ? i : found;
+      const bool not_later = fill_[i] <= free_at;
+      best = not_later ? i : best;
+      free_at = not_later ? fill_[i] : free_at;
+    }
+    if (found != n) {
+      const uint64_t fill = fill_[found];
+      if (t < fill) {
+        ++counters_.merges;
+        return {Outcome::Merge, fill, 0, 0};
       }
+      ++counters_.hits;  // filled but not yet installed: present all the same
+      return {Outcome::Hit, t + hit_latency_, 0, 0};
     }
     ++counters_.misses;
-    return {Outcome::Miss, 0};
-  }
-  /// The MSHR a miss arriving at `t` takes and when it can start.
-  MissStart start_miss(uint64_t t) {
-    uint32_t best = 0;  // the first MSHR of the earliest free cycle (selects, no branches)
-    uint64_t free_at = fill_[0];
-    for (uint32_t i = 1; i < fill_.size(); ++i) {
-      const bool earlier = fill_[i] < free_at;
-      best = earlier ? i : best;
-      free_at = earlier ? fill_[i] : free_at;
-    }
     const uint64_t start = free_at > t ? free_at : t;
     counters_.mshr_stall_cycles += start - t;
-    return {best, start};
+    return {Outcome::Miss, 0, best, start};
   }
   /// Records the miss of `line` on MSHR `mshr`, its data filling at `fill`.
   void hold(uint32_t mshr, uint64_t line, uint64_t fill) {
-    if (flight_line_[mshr] != LruCache::kNoLine) {
+    if (flight_line_[mshr] != LruCache::kNoLine)
       tags_.install(flight_line_[mshr]);  // filled before this miss started: present now
-      --in_flight_;
-    }
     flight_line_[mshr] = line;
     fill_[mshr] = fill;
     order_[mshr] = ++claims_;
-    ++in_flight_;
     if (fill < next_fill_) next_fill_ = fill;
   }
 
@@ -108,7 +102,6 @@ class CacheLevel {
   std::vector<uint64_t> fill_;         // the cycle the MSHR frees (its line's fill cycle)
   std::vector<uint64_t> order_;        // claim order: breaks ties between equal fill cycles
   std::vector<uint32_t> due_;          // scratch of retire_slow
-  uint32_t in_flight_ = 0;             // MSHRs whose line is in flight
   uint64_t claims_ = 0;
   uint64_t next_fill_ = ~uint64_t{0};  // earliest fill among MSHRs in flight
   LevelCounters counters_;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <stdexcept>
+#include <type_traits>
 #include <vector>
 
 #include "datapath/bvh_stepper.h"
@@ -99,9 +100,9 @@ class Engine final : public CycleEngine {
         : core(core_index), stepper(bvh, filter, depth) {}
     uint32_t core;  ///< the core holding this slot
     StepRequest pending;
+    BvhStepper<Tester> stepper;  // its traversal stack at its end
     uint64_t dispatched = 0;
     uint64_t trace_index = 0;  ///< the ray's position in the feed
-    BvhStepper<Tester> stepper;  // its traversal stack at its end
     TraceRay tr;
     EmittedRay er;
     /// Bytes from the slot's start that a step reads: up to the stepper's stack.
@@ -118,9 +119,15 @@ class Engine final : public CycleEngine {
   void schedule_step(uint64_t at, uint32_t id) {
     // The step reads its node or triangles when it is handled, many events
     // later: ask the host's caches for them now (no effect on any result).
-    const StepRequest& r = slots_[id].pending;
-    if (r.kind == StepRequest::Node) __builtin_prefetch(&bvh_.nodes[r.index]);
-    else if (r.kind == StepRequest::Leaf) __builtin_prefetch(&bvh_.tris[r.index]);
+    const Slot& s = slots_[id];
+    const StepRequest& r = s.pending;
+    if (r.kind == StepRequest::Node) {
+      __builtin_prefetch(&bvh_.nodes[r.index]);
+      if constexpr (std::is_same_v<Memory, MemoryHierarchy>) memory_.prefetch(static_cast<int>(s.core), map_.node(r.index));
+    } else if (r.kind == StepRequest::Leaf) {
+      __builtin_prefetch(&bvh_.tris[r.index]);
+      if constexpr (std::is_same_v<Memory, MemoryHierarchy>) memory_.prefetch(static_cast<int>(s.core), map_.triangle(r.index));
+    }
     events_.schedule(at, id);
   }
 

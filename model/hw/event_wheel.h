@@ -67,13 +67,7 @@ class EventWheel {
   /// Takes the next event if its cycle is before `limit`: its id into `id`,
   /// its cycle into `at`. False (and nothing taken) otherwise.
   bool take(uint64_t limit, uint64_t& at, uint32_t& id) {
-    if (!(in_batch_ && batch_next_ < batch_end_)) {
-      in_batch_ = false;
-      if (pending_ == 0) return false;
-      const uint64_t next = next_cycle();
-      if (next >= limit) return false;
-      open_batch(next);
-    }
+    if (!(in_batch_ && batch_next_ < batch_end_) && !open_next(limit)) return false;
     if (base_ >= limit) return false;
     at = base_;
     id = batch_[batch_next_++];
@@ -82,7 +76,18 @@ class EventWheel {
   }
 
  private:
-  static constexpr int kIdBits = 24;  // ids below 2^24; cycles below 2^40
+  static constexpr int kIdBits = 24;
+
+  /// The batch is used up: opens the next cycle's if it is before `limit`
+  /// (kept out of line so that take(), called once per event, stays small).
+  __attribute__((noinline)) bool open_next(uint64_t limit) {
+    in_batch_ = false;
+    if (pending_ == 0) return false;
+    const uint64_t next = next_cycle();
+    if (next >= limit) return false;
+    open_batch(next);
+    return true;
+  }  // ids below 2^24; cycles below 2^40
 
   void put(uint64_t at, uint32_t id) {
     const size_t b = static_cast<size_t>(at & mask_);

@@ -23,6 +23,7 @@ class LruCache {
   /// True when `line` is present; a hit makes it the most recently used of its set.
   bool touch(uint64_t line) {
     uint64_t* set = set_at(line);
+    if (set[0] == line) return true;  // already the most recent: nothing moves
     const uint32_t w = find_way(set, line);
     if (w == ways_) return false;
     for (uint32_t i = w; i > 0; --i) set[i] = set[i - 1];  // the line becomes the most recent
@@ -42,6 +43,9 @@ class LruCache {
     return replaced;
   }
 
+  /// Asks the host's caches for the set of `line` (no effect on any result).
+  void prefetch(uint64_t line) const { __builtin_prefetch(set_at(line)); }
+
   uint32_t sets() const { return sets_; }
   uint32_t ways() const { return ways_; }
 
@@ -54,8 +58,20 @@ class LruCache {
   /// Way of `line` in `set`, or ways_: every way is compared (no early exit, so
   /// no branch depends on where the line is).
   uint32_t find_way(const uint64_t* set, uint64_t line) const {
-    uint32_t found = ways_;
-    for (uint32_t w = ways_; w-- > 0;) found = set[w] == line ? w : found;
+    switch (ways_) {  // the usual associativities with their loops unrolled
+      case 4: return find_in<4>(set, line);
+      case 8: return find_in<8>(set, line);
+      case 16: return find_in<16>(set, line);
+      default: return find_in(set, line, ways_);
+    }
+  }
+  template <uint32_t Ways>
+  static uint32_t find_in(const uint64_t* set, uint64_t line) {
+    return find_in(set, line, Ways);
+  }
+  static uint32_t find_in(const uint64_t* set, uint64_t line, uint32_t ways) {
+    uint32_t found = ways;
+    for (uint32_t w = ways; w-- > 0;) found = set[w] == line ? w : found;
     return found;
   }
 

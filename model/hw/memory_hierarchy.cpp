@@ -61,18 +61,16 @@ uint64_t MemoryHierarchy::read(int core, uint64_t addr, uint32_t bytes, uint64_t
 }
 
 uint64_t MemoryHierarchy::read_line(CacheLevel& l1, uint64_t line, uint64_t now) {
-  const CacheLevel::Lookup look = l1.lookup(line, now);
-  if (look.outcome != CacheLevel::Outcome::Miss) return look.ready;
-  const CacheLevel::MissStart miss = l1.start_miss(now);
+  const CacheLevel::Access miss = l1.access(line, now);
+  if (miss.outcome != CacheLevel::Outcome::Miss) return miss.ready;
   const uint64_t fill = read_l2(line, miss.start + l1.hit_latency());
   l1.hold(miss.mshr, line, fill);
   return fill;
 }
 
 uint64_t MemoryHierarchy::read_l2(uint64_t line, uint64_t t) {
-  const CacheLevel::Lookup look = l2_.lookup(line, t);
-  if (look.outcome != CacheLevel::Outcome::Miss) return look.ready;
-  const CacheLevel::MissStart miss = l2_.start_miss(t);
+  const CacheLevel::Access miss = l2_.access(line, t);
+  if (miss.outcome != CacheLevel::Outcome::Miss) return miss.ready;
   const uint64_t fill = dram_.read_line(miss.start + l2_.hit_latency());
   l2_.hold(miss.mshr, line, fill);
   return fill;

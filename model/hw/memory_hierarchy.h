@@ -30,6 +30,13 @@ class MemoryHierarchy final : public MemoryPort {
 
   uint64_t read(int core, uint64_t addr, uint32_t bytes, uint64_t now) override;
   nlohmann::json stats() const override;
+  /// Asks the host's caches for the tag sets a read of `addr` by `core` looks up
+  /// first (its first line in the L1 and the L2); changes nothing.
+  void prefetch(int core, uint64_t addr) const {
+    const uint64_t line = addr >> line_shift_;
+    l1_[static_cast<size_t>(core)].tags().prefetch(line);
+    l2_.tags().prefetch(line);
+  }
 
  private:
   uint64_t read_line(CacheLevel& l1, uint64_t line, uint64_t now);
