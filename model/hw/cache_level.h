@@ -53,40 +53,30 @@ class CacheLevel {
       ++counters_.hits;
       return {Outcome::Hit, t + hit_latency_, 0, 0};
     }
-    // One pass over the MSHRs: the one holding `line`, and the first of the
-    // earliest free cycle (selects, no branches).
-    const uint32_t n = static_cast<uint32_t>(fill_.size());
-    uint32_t found = n, best = 0;
-    uint64_t free_at = ~uint64_t{0};
-    for (uint32_t i = n; i-- > 0;) {
-      found = flight_line_[i] == line ? i : found;
-      const bool not_later = fill_[i] <= free_at;
-      best = not_later ? i : best;
-      free_at = not_later ? fill_[i] : free_at;
-    }
-    if (found != n) {
-      const uint64_t fill = fill_[found];
-      if (t < fill) {
-        ++counters_.merges;
-        return {Outcome::Merge, fill, 0, 0};
+    if (in_flight_per_set_[tags_.set_of(line)] != 0) {  // else no MSHR can hold it
+      const uint32_t found = find_in_flight(line);
+      if (found != mshrs_) {
+        const uint64_t fill = fill_[found];
+        if (t < fill) {
+          ++counters_.merges;
+          return {Outcome::Merge, fill, 0, 0};
+        }
+        ++counters_.hits;  // filled but not yet installed: present all the same
+        return {Outcome::Hit, t + hit_latency_, 0, 0};
       }
-      ++counters_.hits;  // filled but not yet installed: present all the same
-      return {Outcome::Hit, t + hit_latency_, 0, 0};
     }
     ++counters_.misses;
+    // The first of the earliest free cycle: the front of the free order.
+    const uint64_t front = ring_[head_];
+    const uint64_t free_at = front >> index_bits_;
     const uint64_t start = free_at > t ? free_at : t;
     counters_.mshr_stall_cycles += start - t;
-    return {Outcome::Miss, 0, best, start};
+    return {Outcome::Miss, 0, static_cast<uint32_t>(front & index_mask_), start};
   }
-  /// Records the miss of `line` on MSHR `mshr`, its data filling at `fill`.
-  void hold(uint32_t mshr, uint64_t line, uint64_t fill) {
-    if (flight_line_[mshr] != LruCache::kNoLine)
-      tags_.install(flight_line_[mshr]);  // filled before this miss started: present now
-    flight_line_[mshr] = line;
-    fill_[mshr] = fill;
-    order_[mshr] = ++claims_;
-    if (fill < next_fill_) next_fill_ = fill;
-  }
+  /// Records the miss of `line` that the last access() answered with Miss: it
+  /// holds the MSHR access() named until its data fill at `fill` (> every
+  /// horizon retired so far).
+  void hold(uint64_t line, uint64_t fill);
 
   uint32_t hit_latency() const { return hit_latency_; }
   const LevelCounters& counters() const { return counters_; }
@@ -94,16 +84,45 @@ class CacheLevel {
 
  private:
   void retire_slow(uint64_t horizon);
+  /// The MSHR whose line in flight is `line`, or mshrs_.
+  uint32_t find_in_flight(uint64_t line) const {
+    uint32_t found = mshrs_;
+    for (uint32_t i = mshrs_; i-- > 0;) found = flight_line_[i] == line ? i : found;
+    return found;
+  }
+  /// Installs MSHR `mshr`'s line in flight; the MSHR holds no line afterwards.
+  void install(uint32_t mshr) {
+    const uint64_t line = flight_line_[mshr];
+    tags_.install(line);
+    --in_flight_per_set_[tags_.set_of(line)];
+    flight_line_[mshr] = LruCache::kNoLine;
+  }
+  /// The key at position k of the free order (0: the front).
+  uint64_t& ring_at(uint32_t k) {
+    const uint32_t p = head_ + k;
+    return ring_[p >= mshrs_ ? p - mshrs_ : p];
+  }
+  uint64_t fill_of_key(uint64_t key) const { return key >> index_bits_; }
 
   LruCache tags_;
   uint32_t hit_latency_;
+  uint32_t mshrs_;
   // The MSHRs, one entry each in every array:
   std::vector<uint64_t> flight_line_;  // the line in flight (not yet in the tag array), or kNoLine
   std::vector<uint64_t> fill_;         // the cycle the MSHR frees (its line's fill cycle)
   std::vector<uint64_t> order_;        // claim order: breaks ties between equal fill cycles
-  std::vector<uint32_t> due_;          // scratch of retire_slow
+  // Every MSHR as (free cycle << index_bits_ | index), sorted, in a ring that
+  // starts at head_: the front is the first of the earliest free cycle, the one
+  // a miss takes. The MSHRs whose fill is after the last retired horizon hold
+  // their line in flight; they are the ring's tail from position pending_from_.
+  std::vector<uint64_t> ring_;
+  uint32_t head_ = 0, pending_from_;
+  uint32_t index_bits_;
+  uint64_t index_mask_;
+  std::vector<uint32_t> in_flight_per_set_;  // per tag set: lines in flight that map to it
+  std::vector<uint32_t> due_;                // scratch of retire_slow
   uint64_t claims_ = 0;
-  uint64_t next_fill_ = ~uint64_t{0};  // earliest fill among MSHRs in flight
+  uint64_t next_fill_ = ~uint64_t{0};  // the fill at pending_from_, or none
   LevelCounters counters_;
 };
 

@@ -38,7 +38,12 @@ class LruCache {
   uint64_t install(uint64_t line) {
     uint64_t* set = set_at(line);
     const uint64_t replaced = set[ways_ - 1];  // the least recent line, or an empty way
-    for (uint32_t i = ways_ - 1; i > 0; --i) set[i] = set[i - 1];
+    switch (ways_) {  // every way moves one place down: unrolled for the usual associativities
+      case 4: age<4>(set); break;
+      case 8: age<8>(set); break;
+      case 16: age<16>(set); break;
+      default: age(set, ways_);
+    }
     set[0] = line;
     return replaced;
   }
@@ -48,11 +53,12 @@ class LruCache {
 
   uint32_t sets() const { return sets_; }
   uint32_t ways() const { return ways_; }
-
- private:
+  /// The set `line` lives in.
   uint32_t set_of(uint64_t line) const {
     return static_cast<uint32_t>(set_mask_ ? (line & set_mask_) : (sets_ == 1 ? 0 : line % sets_));
   }
+
+ private:
   uint64_t* set_at(uint64_t line) { return &lines_[static_cast<size_t>(set_of(line)) * ways_]; }
   const uint64_t* set_at(uint64_t line) const { return &lines_[static_cast<size_t>(set_of(line)) * ways_]; }
   /// Way of `line` in `set`, or ways_: every way is compared (no early exit, so
@@ -68,6 +74,13 @@ class LruCache {
   template <uint32_t Ways>
   static uint32_t find_in(const uint64_t* set, uint64_t line) {
     return find_in(set, line, Ways);
+  }
+  template <uint32_t Ways>
+  static void age(uint64_t* set) {
+    age(set, Ways);
+  }
+  static void age(uint64_t* set, uint32_t ways) {
+    for (uint32_t i = ways - 1; i > 0; --i) set[i] = set[i - 1];
   }
   static uint32_t find_in(const uint64_t* set, uint64_t line, uint32_t ways) {
     uint32_t found = ways;

@@ -64,7 +64,7 @@ uint64_t MemoryHierarchy::read_line(CacheLevel& l1, uint64_t line, uint64_t now)
   const CacheLevel::Access miss = l1.access(line, now);
   if (miss.outcome != CacheLevel::Outcome::Miss) return miss.ready;
   const uint64_t fill = read_l2(line, miss.start + l1.hit_latency());
-  l1.hold(miss.mshr, line, fill);
+  l1.hold(line, fill);
   return fill;
 }
 
@@ -72,7 +72,7 @@ uint64_t MemoryHierarchy::read_l2(uint64_t line, uint64_t t) {
   const CacheLevel::Access miss = l2_.access(line, t);
   if (miss.outcome != CacheLevel::Outcome::Miss) return miss.ready;
   const uint64_t fill = dram_.read_line(miss.start + l2_.hit_latency());
-  l2_.hold(miss.mshr, line, fill);
+  l2_.hold(line, fill);
   return fill;
 }
 
