@@ -35,7 +35,7 @@ std::vector<ScenarioCase> generate_coplanar_scenario(const ScenarioSettings& s) 
     const TraceRay parent = out.add(camera);
     const Hit h = tracer.trace(parent);
     if (!h.valid()) continue;
-    const HitPointRule rule = hitpoint.rule(i);
+    const RendererHitPoint rule = hitpoint.rule(i);
     const DVec3 up{0, 0, 1};
     out.add(child_at_hit(parent, h, scene, RayKind::Reflect, to_fvec(mirror(dunit(to_dvec(parent.d)), up)), rule));
     out.add(child_at_hit(parent, h, scene, RayKind::Diffuse, to_fvec(dunit(dadd(up, to_dvec(rng.unit_vector())))), rule));

@@ -41,7 +41,7 @@ ScenarioCase layer_case(const LayerSetup& setup, const LayerParams& p, SeededRan
     const TraceRay& parent = out.add(setup.camera(rng));
     const Hit h = tracer.trace(parent);
     if (!h.valid()) continue;
-    const HitPointRule rule = p.hitpoint.rule(i);
+    const RendererHitPoint rule = p.hitpoint.rule(i);
     const SurfaceChildren kids = glass_children(parent, h, scene, p.ior, rule);
     const TraceRay parent_copy = parent;  // `out` may reallocate below
     out.add(kids.transmit);

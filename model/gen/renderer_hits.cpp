@@ -30,12 +30,12 @@ Hit RendererTracer::trace(const TraceRay& r) const {
 }
 
 TraceRay child_at_hit(const TraceRay& parent, const Hit& h, const Scene& scene, RayKind kind, Vec3f d,
-                      HitPointRule rule, float tmax) {
+                      RendererHitPoint rule, float tmax) {
   const Triangle& tri = scene.triangles[h.prim];
   TraceRay c;
   c.parent = parent.id;
   c.kind = kind;
-  c.o = rule == HitPointRule::RayEquation ? hit_point_ray(parent.o, parent.d, h.t)
+  c.o = rule == RendererHitPoint::RayEquation ? hit_point_ray(parent.o, parent.d, h.t)
                                           : hit_point_barycentric(tri, h.u, h.v);
   c.d = d;
   c.tmax = tmax;
@@ -53,7 +53,7 @@ TraceRay child_at_hit(const TraceRay& parent, const Hit& h, const Scene& scene, 
 namespace vbsim {
 
 TraceRay shadow_child_at_hit(const TraceRay& parent, const Hit& h, const Scene& scene, Vec3f light,
-                             HitPointRule rule) {
+                             RendererHitPoint rule) {
   TraceRay c = child_at_hit(parent, h, scene, RayKind::Shadow, Vec3f{0, 0, 1}, rule, 1.0f);
   c.d = light - c.o;
   c.sign = -1;

@@ -17,7 +17,9 @@
 
 namespace vbsim {
 
-enum class HitPointRule { RayEquation, Barycentric };
+/// How the path generator computes a child ray's origin from its parent's hit
+/// (a type of its own: gen/scenario_trace_builder.h has another rule).
+enum class RendererHitPoint { RayEquation, Barycentric };
 
 class RendererTracer {
  public:
@@ -36,12 +38,12 @@ class RendererTracer {
 /// Child of `parent` (whose id is set) at its hit `h`: kind, direction d,
 /// tmax, origin by `rule`, parent data and sign bit filled; id left 0.
 TraceRay child_at_hit(const TraceRay& parent, const Hit& h, const Scene& scene, RayKind kind, Vec3f d,
-                      HitPointRule rule, float tmax = INFINITY);
+                      RendererHitPoint rule, float tmax = INFINITY);
 
 /// Shadow child of `parent` at its hit `h` toward the point `light`
 /// (d = light - o, tmax 1), built as child_at_hit builds its children.
 TraceRay shadow_child_at_hit(const TraceRay& parent, const Hit& h, const Scene& scene, Vec3f light,
-                             HitPointRule rule);
+                             RendererHitPoint rule);
 
 /// The rays of a trace under construction: ids are positions, so parents
 /// (added first) precede their children.

@@ -28,10 +28,10 @@ class HitPointSetting {
       throw std::runtime_error(
           fmt::format("option '--set hitpoint={}': expected ray, barycentric or both", mode_));
   }
-  HitPointRule rule(int64_t index) const {
-    if (mode_ == "ray") return HitPointRule::RayEquation;
-    if (mode_ == "barycentric") return HitPointRule::Barycentric;
-    return index % 2 == 0 ? HitPointRule::RayEquation : HitPointRule::Barycentric;
+  RendererHitPoint rule(int64_t index) const {
+    if (mode_ == "ray") return RendererHitPoint::RayEquation;
+    if (mode_ == "barycentric") return RendererHitPoint::Barycentric;
+    return index % 2 == 0 ? RendererHitPoint::RayEquation : RendererHitPoint::Barycentric;
   }
 
  private:

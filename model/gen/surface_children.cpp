@@ -5,7 +5,7 @@
 namespace vbsim {
 
 SurfaceChildren glass_children(const TraceRay& parent, const Hit& h, const Scene& scene, double ior,
-                               HitPointRule rule) {
+                               RendererHitPoint rule) {
   const DVec3 d = dunit(to_dvec(parent.d));
   const DVec3 ng = dunit(to_dvec(geometric_normal(scene.triangles[h.prim])));
   const bool entering = ddot(d, ng) < 0;  // arriving on the front (outer) side

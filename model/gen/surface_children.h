@@ -18,6 +18,6 @@ struct SurfaceChildren {
 
 /// Reflection and refraction children of `parent` at its hit `h`.
 SurfaceChildren glass_children(const TraceRay& parent, const Hit& h, const Scene& scene, double ior,
-                               HitPointRule rule);
+                               RendererHitPoint rule);
 
 }  // namespace vbsim
