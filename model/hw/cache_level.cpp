@@ -9,12 +9,12 @@ CacheLevel::CacheLevel(const CacheConfig& config)
       flight_line_(config.mshrs, LruCache::kNoLine),
       fill_(config.mshrs, 0),
       order_(config.mshrs, 0),
-      ring_(config.mshrs),
       pending_from_(config.mshrs),
       in_flight_per_set_(tags_.sets(), 0) {
   index_bits_ = 0;
   while ((uint64_t{1} << index_bits_) < config.mshrs) ++index_bits_;
   index_mask_ = (uint64_t{1} << index_bits_) - 1;
+  ring_.assign(size_t{1} << index_bits_, 0);
   for (uint32_t i = 0; i < config.mshrs; ++i) ring_[i] = i;  // all free at cycle 0, in index order
   due_.reserve(config.mshrs);
 }
@@ -25,7 +25,7 @@ void CacheLevel::hold(uint64_t line, uint64_t fill) {
   const uint32_t mshr = static_cast<uint32_t>(ring_[head_] & index_mask_);
   if (pending_from_ == 0) install(mshr);
   else --pending_from_;
-  head_ = head_ + 1 == mshrs_ ? 0 : head_ + 1;
+  head_ = static_cast<uint32_t>((head_ + 1) & index_mask_);
 
   flight_line_[mshr] = line;
   fill_[mshr] = fill;

@@ -49,11 +49,12 @@ class CacheLevel {
   Access access(uint64_t line, uint64_t t) {
     ++counters_.accesses;
     // A line in flight is never in the tag array, so the order of the two checks is free.
-    if (tags_.touch(line)) {
+    const uint32_t set = tags_.set_of(line);
+    if (tags_.touch_in(set, line)) {
       ++counters_.hits;
       return {Outcome::Hit, t + hit_latency_, 0, 0};
     }
-    if (in_flight_per_set_[tags_.set_of(line)] != 0) {  // else no MSHR can hold it
+    if (in_flight_per_set_[set] != 0) {  // else no MSHR can hold it
       const uint32_t found = find_in_flight(line);
       if (found != mshrs_) {
         const uint64_t fill = fill_[found];
@@ -93,15 +94,13 @@ class CacheLevel {
   /// Installs MSHR `mshr`'s line in flight; the MSHR holds no line afterwards.
   void install(uint32_t mshr) {
     const uint64_t line = flight_line_[mshr];
-    tags_.install(line);
-    --in_flight_per_set_[tags_.set_of(line)];
+    const uint32_t set = tags_.set_of(line);
+    tags_.install_in(set, line);
+    --in_flight_per_set_[set];
     flight_line_[mshr] = LruCache::kNoLine;
   }
   /// The key at position k of the free order (0: the front).
-  uint64_t& ring_at(uint32_t k) {
-    const uint32_t p = head_ + k;
-    return ring_[p >= mshrs_ ? p - mshrs_ : p];
-  }
+  uint64_t& ring_at(uint32_t k) { return ring_[(head_ + k) & index_mask_]; }
   uint64_t fill_of_key(uint64_t key) const { return key >> index_bits_; }
 
   LruCache tags_;
@@ -112,9 +111,11 @@ class CacheLevel {
   std::vector<uint64_t> fill_;         // the cycle the MSHR frees (its line's fill cycle)
   std::vector<uint64_t> order_;        // claim order: breaks ties between equal fill cycles
   // Every MSHR as (free cycle << index_bits_ | index), sorted, in a ring that
-  // starts at head_: the front is the first of the earliest free cycle, the one
-  // a miss takes. The MSHRs whose fill is after the last retired horizon hold
-  // their line in flight; they are the ring's tail from position pending_from_.
+  // starts at head_: the front is the first of the earliest free cycle, the
+  // one a miss takes. The ring's storage has 2^index_bits_ >= mshrs_ places (a
+  // position wraps with index_mask_); the ring is the mshrs_ places from head_.
+  // The MSHRs whose fill is after the last retired horizon hold their line in
+  // flight; they are the ring's tail from position pending_from_.
   std::vector<uint64_t> ring_;
   uint32_t head_ = 0, pending_from_;
   uint32_t index_bits_;

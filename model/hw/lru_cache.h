@@ -21,8 +21,10 @@ class LruCache {
   LruCache(uint32_t sets, uint32_t ways);
 
   /// True when `line` is present; a hit makes it the most recently used of its set.
-  bool touch(uint64_t line) {
-    uint64_t* set = set_at(line);
+  bool touch(uint64_t line) { return touch_in(set_of(line), line); }
+  /// touch() of `line`, whose set (set_of(line)) the caller already knows.
+  bool touch_in(uint32_t set_index, uint64_t line) {
+    uint64_t* set = set_begin(set_index);
     if (set[0] == line) return true;  // already the most recent: nothing moves
     const uint32_t w = find_way(set, line);
     if (w == ways_) return false;
@@ -35,8 +37,10 @@ class LruCache {
   /// Puts `line` (not present) into its set as the most recently used line,
   /// replacing an empty way or else the least recently used line. Returns the
   /// line it replaced, or kNoLine.
-  uint64_t install(uint64_t line) {
-    uint64_t* set = set_at(line);
+  uint64_t install(uint64_t line) { return install_in(set_of(line), line); }
+  /// install() of `line`, whose set (set_of(line)) the caller already knows.
+  uint64_t install_in(uint32_t set_index, uint64_t line) {
+    uint64_t* set = set_begin(set_index);
     const uint64_t replaced = set[ways_ - 1];  // the least recent line, or an empty way
     switch (ways_) {  // every way moves one place down: unrolled for the usual associativities
       case 4: age<4>(set); break;
@@ -55,11 +59,11 @@ class LruCache {
   uint32_t ways() const { return ways_; }
   /// The set `line` lives in.
   uint32_t set_of(uint64_t line) const {
-    return static_cast<uint32_t>(set_mask_ ? (line & set_mask_) : (sets_ == 1 ? 0 : line % sets_));
+    return static_cast<uint32_t>(sets_pow2_ ? (line & set_mask_) : line % sets_);
   }
 
  private:
-  uint64_t* set_at(uint64_t line) { return &lines_[static_cast<size_t>(set_of(line)) * ways_]; }
+  uint64_t* set_begin(uint32_t set_index) { return &lines_[static_cast<size_t>(set_index) * ways_]; }
   const uint64_t* set_at(uint64_t line) const { return &lines_[static_cast<size_t>(set_of(line)) * ways_]; }
   /// Way of `line` in `set`, or ways_: every way is compared (no early exit, so
   /// no branch depends on where the line is).
@@ -89,7 +93,8 @@ class LruCache {
   }
 
   uint32_t sets_, ways_;
-  uint64_t set_mask_;            // sets - 1 when sets is a power of two > 1, else 0
+  bool sets_pow2_;               // sets is a power of two (1 included): a set is line & set_mask_
+  uint64_t set_mask_;            // sets - 1
   std::vector<uint64_t> lines_;  // sets * ways; per set in recency order, kNoLine when empty
 };
 

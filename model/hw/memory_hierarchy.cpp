@@ -47,8 +47,8 @@ uint64_t MemoryHierarchy::read(int core, uint64_t addr, uint32_t bytes, uint64_t
 
   const uint64_t first = addr >> line_shift_;
   const uint64_t last = (addr + (bytes ? bytes - 1 : 0)) >> line_shift_;
-  uint64_t ready = 0;
-  for (uint64_t line = first; line <= last; ++line) {
+  uint64_t ready = read_line(l1, first, now);  // a node read: its only line
+  for (uint64_t line = first + 1; line <= last; ++line) {
     const uint64_t r = read_line(l1, line, now);
     if (r > ready) ready = r;
   }
@@ -60,7 +60,9 @@ uint64_t MemoryHierarchy::read(int core, uint64_t addr, uint32_t bytes, uint64_t
   return ready;
 }
 
-uint64_t MemoryHierarchy::read_line(CacheLevel& l1, uint64_t line, uint64_t now) {
+// Inlined into both of read()'s calls (the first line's, the loop's).
+__attribute__((always_inline)) inline uint64_t MemoryHierarchy::read_line(CacheLevel& l1, uint64_t line,
+                                                                         uint64_t now) {
   const CacheLevel::Access miss = l1.access(line, now);
   if (miss.outcome != CacheLevel::Outcome::Miss) return miss.ready;
   const uint64_t fill = read_l2(line, miss.start + l1.hit_latency());
