@@ -86,9 +86,23 @@ class BvhStepper {
     float t0, t1;
     const unsigned hit = box_->hits(n, tmax_, t0, t1);
     if (hit == 0u) return pop();
-    const bool first0 = hit == 1u || (hit == 3u && t0 <= t1);
-    if (hit == 3u) push(n.child(first0 ? 1 : 0), first0 ? t1 : t0);
-    return visit(n.child(first0 ? 0 : 1));
+    // One or both children met: descend into the nearer (child 0 on a tie),
+    // push the farther when both are met. Written without branches on the
+    // box results (the host mispredicts them about half the time): the
+    // farther entry is always written at the top and kept only when pushed.
+    const unsigned both = (hit >> 1) & hit & 1u;
+    const unsigned child1_nearer = t0 <= t1 ? 0u : 1u;
+    const unsigned first = (hit >> 1) & (((hit & 1u) ^ 1u) | child1_nearer);  // hit 2: 1; 1: 0; 3: by entry
+    const float entry[2] = {t0, t1};
+    const BvhRef near = n.child(static_cast<int>(first)), far = n.child(static_cast<int>(first ^ 1u));
+    stack_[sp_] = {far.index, far.count, entry[first ^ 1u]};
+    const unsigned full = onchip_ == onchip_depth_ ? 1u : 0u;
+    sp_ += static_cast<int>(both);
+    spills_ += both & full;                        // the oldest on-chip entry goes to memory
+    onchip_ += static_cast<int>(both & (full ^ 1u));
+    current_ = near;
+    return {static_cast<StepRequest::Kind>(near.is_leaf() ? StepRequest::Leaf : StepRequest::Node), near.index,
+            near.count};
   }
 
   /// Triangle `i` (an index in Bvh::tris inside the current leaf, taken in order).
@@ -130,7 +144,7 @@ class BvhStepper {
   int onchip_depth() const { return onchip_depth_; }
   /// Host bytes of the traversal stack, the stepper's last member (a timing
   /// model may prefetch the stepper's other members before a step).
-  static constexpr size_t stack_host_bytes() { return sizeof(Entry) * kTraversalStackDepth; }
+  static constexpr size_t stack_host_bytes() { return sizeof(Entry) * (kTraversalStackDepth + 1); }
 
  private:
   StepRequest done() {
@@ -193,7 +207,9 @@ class BvhStepper {
   uint64_t rejected_ = 0, refills_ = 0;
   Ray ray_;
   std::optional<Tester> tester_;
-  Entry stack_[kTraversalStackDepth];  // last: a step touches only its top, the rest stays cold
+  // Last: a step touches only its top, the rest stays cold. One spare entry:
+  // node_step writes the entry above the top even when it does not push.
+  Entry stack_[kTraversalStackDepth + 1];
 };
 
 }  // namespace vbsim
