@@ -100,9 +100,7 @@ class BvhStepper {
     sp_ += static_cast<int>(both);
     spills_ += both & full;                        // the oldest on-chip entry goes to memory
     onchip_ += static_cast<int>(both & (full ^ 1u));
-    current_ = near;
-    return {static_cast<StepRequest::Kind>(near.is_leaf() ? StepRequest::Leaf : StepRequest::Node), near.index,
-            near.count};
+    return visit(near);
   }
 
   /// Triangle `i` (an index in Bvh::tris inside the current leaf, taken in order).
@@ -152,10 +150,10 @@ class BvhStepper {
     return {StepRequest::Done, 0, 0};
   }
 
+  /// Node: {Node, index, 0} (an interior node's count is 0); leaf: {Leaf, first, count}.
   StepRequest visit(BvhRef r) {
     current_ = r;
-    if (r.is_leaf()) return {StepRequest::Leaf, r.index, r.count};
-    return {StepRequest::Node, r.index, 0};
+    return {static_cast<StepRequest::Kind>(r.is_leaf() ? StepRequest::Leaf : StepRequest::Node), r.index, r.count};
   }
 
   void push(BvhRef r, float t) {
