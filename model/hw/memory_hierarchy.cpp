@@ -70,7 +70,7 @@ __attribute__((always_inline)) inline uint64_t MemoryHierarchy::read_line(CacheL
   return fill;
 }
 
-uint64_t MemoryHierarchy::read_l2(uint64_t line, uint64_t t) {
+__attribute__((always_inline)) inline uint64_t MemoryHierarchy::read_l2(uint64_t line, uint64_t t) {
   const CacheLevel::Access miss = l2_.access(line, t);
   if (miss.outcome != CacheLevel::Outcome::Miss) return miss.ready;
   const uint64_t fill = dram_.read_line(miss.start + l2_.hit_latency());
