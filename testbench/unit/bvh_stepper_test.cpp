@@ -135,3 +135,90 @@ TEST_CASE("stepper gives closest_hit's hit on random rays", "[stepper]") {
   CHECK(hits > 300);  // the comparison covered real hits, not only misses
   if (depth == 2) CHECK(t.spills > 0);
 }
+
+namespace {
+
+Bounds3f slab_box(float x_lo, float x_hi) {
+  Bounds3f b;
+  b.lo = {x_lo, -1, -1};
+  b.hi = {x_hi, 1, 1};
+  return b;
+}
+
+/// A triangle in the plane x = `x` beside the x axis (y from 0.5 to 0.9): a ray
+/// along the axis meets its leaf's box but never the triangle.
+BvhTriangle beside_axis(float x, uint32_t prim) { return {{{x, 0.5f, -0.5f}, {x, 0.9f, -0.5f}, {x, 0.5f, 0.5f}}, prim}; }
+
+/// A comb of `n` interior nodes along +x. Node k: child 0 is node k + 1 (the
+/// last node's child 0 is the leaf of triangle n), box x in [1, 2], entered at
+/// t = 1; child 1 is the leaf of triangle k, box x in [50 + k, 51 + k], entered
+/// at t = 50 + k. A ray from the origin along +x meets both children of every
+/// node and no triangle, so it descends the comb pushing one entry per node,
+/// then pops and visits the n side leaves, last pushed first.
+Bvh comb_bvh(uint32_t n) {
+  Bvh bvh;
+  for (uint32_t k = 0; k < n; ++k) {
+    BvhNode node{};
+    node.set_child(0, slab_box(1, 2), k + 1 < n ? BvhRef{k + 1, 0} : BvhRef{n, 1});
+    node.set_child(1, slab_box(50.0f + k, 51.0f + k), BvhRef{k, 1});
+    bvh.nodes.push_back(node);
+    bvh.tris.push_back(beside_axis(50.5f + k, k));
+  }
+  bvh.tris.push_back(beside_axis(1.5f, n));
+  bvh.root_bounds = slab_box(1, 51.0f + n);
+  bvh.root = BvhRef{0, 0};
+  bvh.depth = static_cast<int>(n) + 1;
+  return bvh;
+}
+
+}  // namespace
+
+// 10 pushes onto 3 on-chip entries: the pushes 4 to 10 each spill the oldest
+// entry (7 spills). The pops take the 3 on-chip entries (side leaves 9, 8, 7),
+// then refill the top 3 of the 7 spilled (stack entries 4..6), pop them (6, 5,
+// 4), refill 3 more (1..3), pop them, refill the last one (entry 0) and pop it:
+// 3 refills of 3, 3 and 1 entries.
+TEST_CASE("stepper spills and refills a hand-built comb exactly", "[stepper]") {
+  const uint32_t n = 10;
+  const Bvh bvh = comb_bvh(n);
+  const CandidateFilter filter(SelfIntersectionMethod{});
+  BvhStepper<ThreeHalfPlaneTester> stepper(bvh, filter, 3);
+  Ray ray;
+  ray.o = {0, 0, 0};
+  ray.d = {1, 0, 0};
+  CandidateCounters cc;
+  TraversalCounters tc;
+  std::vector<std::string> seen;
+  StepRequest q = stepper.begin(ray, false, cc, tc);
+  while (q.kind != StepRequest::Done && seen.size() < 100) {
+    if (q.kind == StepRequest::Node) {
+      seen.push_back("N" + std::to_string(q.index));
+      q = stepper.node_step();
+    } else if (q.kind == StepRequest::Refill) {
+      seen.push_back("R" + std::to_string(q.index) + "+" + std::to_string(q.count));
+      q = stepper.refilled();
+    } else {
+      seen.push_back("L" + std::to_string(q.index));
+      REQUIRE(q.count == 1);
+      CHECK_FALSE(stepper.triangle_step(q.index).candidate);
+      q = stepper.leaf_done();
+    }
+  }
+  const std::vector<std::string> want = {"N0", "N1", "N2", "N3", "N4", "N5",    "N6", "N7", "N8",
+                                         "N9", "L10", "L9", "L8", "L7", "R4+3", "L6", "L5", "L4",
+                                         "R1+3", "L3", "L2", "L1", "R0+1", "L0"};
+  CHECK(seen == want);
+  CHECK(stepper.spills() == 7);
+  CHECK(stepper.refills() == 3);
+  CHECK(stepper.hit().prim < 0);
+  CHECK(tc.node_visits == n);
+  CHECK(tc.box_tests == 1 + 2 * n);
+  CHECK(tc.triangle_tests == n + 1);
+
+  // The same comb with the whole stack on chip: nothing spills or refills.
+  BvhStepper<ThreeHalfPlaneTester> deep(bvh, filter, 16);
+  const StepperRun r = run_stepper(deep, ray, false);
+  CHECK(r.spills == 0);
+  CHECK(r.refills == 0);
+  CHECK(r.tc.node_visits == n);
+}
