@@ -32,7 +32,7 @@ class EventWheel {
 
   /// Schedules `id` (not pending) at cycle `at`, which is not before the cycle
   /// last handed out.
-  void schedule(uint64_t at, uint32_t id) {
+  __attribute__((always_inline)) void schedule(uint64_t at, uint32_t id) {
     ++pending_;
     if (in_batch_ && at == base_) {
       // Joins the batch being handed out, in id order among those still to come.
@@ -44,11 +44,7 @@ class EventWheel {
       batch_[i] = id;
       return;
     }
-    if (at - base_ > mask_) {
-      overflow_.push_back((at << kIdBits) | id);
-      std::push_heap(overflow_.begin(), overflow_.end(), std::greater<>());
-      return;
-    }
+    if (at - base_ > mask_) return schedule_far(at, id);
     put(at, id);
   }
 
@@ -88,6 +84,13 @@ class EventWheel {
     open_batch(next);
     return true;
   }  // ids below 2^24; cycles below 2^40
+
+  /// An event beyond the window waits in the overflow heap (kept out of line:
+  /// schedule() is inlined into every caller).
+  __attribute__((noinline)) void schedule_far(uint64_t at, uint32_t id) {
+    overflow_.push_back((at << kIdBits) | id);
+    std::push_heap(overflow_.begin(), overflow_.end(), std::greater<>());
+  }
 
   void put(uint64_t at, uint32_t id) {
     const size_t b = static_cast<size_t>(at & mask_);
