@@ -19,29 +19,6 @@ CacheLevel::CacheLevel(const CacheConfig& config)
   due_.reserve(config.mshrs);
 }
 
-void CacheLevel::hold(uint64_t line, uint64_t fill) {
-  // The front leaves the ring; its line, if still in flight, filled before
-  // this miss started: present now.
-  const uint32_t mshr = static_cast<uint32_t>(ring_[head_] & index_mask_);
-  if (pending_from_ == 0) install(mshr);
-  else --pending_from_;
-  head_ = static_cast<uint32_t>((head_ + 1) & index_mask_);
-
-  flight_line_[mshr] = line;
-  fill_[mshr] = fill;
-  order_[mshr] = ++claims_;
-  ++in_flight_per_set_[tags_.set_of(line)];
-
-  // Back in at its place from the tail (cycles stay below 2^(64 - index_bits_),
-  // i.e. 2^52). Its fill is after every retired horizon, so it lands in the
-  // pending tail; fills arrive nearly in order, so this moves few keys.
-  const uint64_t key = (fill << index_bits_) | mshr;
-  uint32_t k = mshrs_ - 1;
-  for (; k > pending_from_ && ring_at(k - 1) > key; --k) ring_at(k) = ring_at(k - 1);
-  ring_at(k) = key;
-  next_fill_ = fill_of_key(ring_at(pending_from_));
-}
-
 void CacheLevel::retire_slow(uint64_t horizon) {
   // The due fills, from pending_from_ on, in (fill cycle, claim order) order:
   // the ring orders equal fills by index, so a run of them is re-sorted by claim.

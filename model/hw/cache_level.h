@@ -77,6 +77,7 @@ class CacheLevel {
   /// Records the miss of `line` that the last access() answered with Miss: it
   /// holds the MSHR access() named until its data fill at `fill` (> every
   /// horizon retired so far).
+  /// Inlined into the hierarchy's line reads (below the class).
   void hold(uint64_t line, uint64_t fill);
 
   uint32_t hit_latency() const { return hit_latency_; }
@@ -126,5 +127,28 @@ class CacheLevel {
   uint64_t next_fill_ = ~uint64_t{0};  // the fill at pending_from_, or none
   LevelCounters counters_;
 };
+
+__attribute__((always_inline)) inline void CacheLevel::hold(uint64_t line, uint64_t fill) {
+  // The front leaves the ring; its line, if still in flight, filled before
+  // this miss started: present now.
+  const uint32_t mshr = static_cast<uint32_t>(ring_[head_] & index_mask_);
+  if (pending_from_ == 0) install(mshr);
+  else --pending_from_;
+  head_ = static_cast<uint32_t>((head_ + 1) & index_mask_);
+
+  flight_line_[mshr] = line;
+  fill_[mshr] = fill;
+  order_[mshr] = ++claims_;
+  ++in_flight_per_set_[tags_.set_of(line)];
+
+  // Back in at its place from the tail (cycles stay below 2^(64 - index_bits_),
+  // i.e. 2^52). Its fill is after every retired horizon, so it lands in the
+  // pending tail; fills arrive nearly in order, so this moves few keys.
+  const uint64_t key = (fill << index_bits_) | mshr;
+  uint32_t k = mshrs_ - 1;
+  for (; k > pending_from_ && ring_at(k - 1) > key; --k) ring_at(k) = ring_at(k - 1);
+  ring_at(k) = key;
+  next_fill_ = fill_of_key(ring_at(pending_from_));
+}
 
 }  // namespace vbsim::hw
