@@ -186,19 +186,21 @@ class BvhStepper {
   };
 
   // What node_step and pop use first, side by side (a timing model interleaves
-  // many steppers, so each step finds them in as few host cache lines as possible);
-  // then what the triangle steps and the ray's end use.
-  std::optional<RayBoxTester> box_;
+  // many steppers, so each step finds them in as few host cache lines as
+  // possible): the scalars in 44 bytes (a timing model's slot puts its 16-byte
+  // header before them, so the two share one 64-byte line), then the box
+  // tester's vectors; then what the triangle steps and the ray's end use.
   const Bvh* bvh_;
   TraversalCounters* tc_ = nullptr;
   float tmax_ = 0.0f;
   BvhRef current_;
   int sp_ = 0, onchip_ = 0;
   int onchip_depth_;
+  uint32_t spills_ = 0;  // a ray's spills are fewer than its node visits
+  std::optional<RayBoxTester> box_;
   int refill_count_ = 0;
   bool finished_ = false;
   bool any_hit_ = false;
-  uint64_t spills_ = 0;
   const CandidateFilter* filter_;
   CandidateCounters* cc_ = nullptr;
   Hit best_;

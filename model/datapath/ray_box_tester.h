@@ -35,7 +35,7 @@ class RayBoxTester {
   }
 
   /// Per-ray set-up (as a hardware box unit latches the ray: o, 1/d, tmin).
-  explicit RayBoxTester(const Ray& ray) : tmin_(ray.tmin) {
+  explicit RayBoxTester(const Ray& ray) : tmin_(ray.tmin) {  // (the vectors are set below)
     for (int a = 0; a < 3; ++a) {
       o_[a] = ray.o[a];
       inv_[a] = safe_reciprocal(ray.d[a]);
@@ -49,7 +49,6 @@ class RayBoxTester {
     o_z_ = _mm_set1_ps(o_[2]);
     inv_z_ = _mm_set1_ps(inv_[2]);
     tmin4_ = _mm_set1_ps(ray.tmin);
-    widen_ = _mm_set1_ps(kWiden);
 #endif
   }
 
@@ -109,7 +108,7 @@ class RayBoxTester {
     const __m128 t_z = _mm_mul_ps(_mm_sub_ps(z, o_z_), inv_z_);
     const __m128 tn = _mm_max_ps(_mm_max_ps(tn_xy, _mm_movehl_ps(tn_xy, tn_xy)), _mm_max_ps(t_z, tmin4_));
     const __m128 tf = _mm_min_ps(_mm_min_ps(tf_xy, _mm_movehl_ps(tf_xy, tf_xy)), _mm_movehl_ps(t_z, t_z));
-    const __m128 limit = _mm_min_ps(_mm_mul_ps(tf, widen_), _mm_set1_ps(tmax));
+    const __m128 limit = _mm_min_ps(_mm_mul_ps(tf, _mm_set1_ps(kWiden)), _mm_set1_ps(tmax));
     entry0 = _mm_cvtss_f32(tn);
     entry1 = _mm_cvtss_f32(_mm_shuffle_ps(tn, tn, 1));
     return static_cast<unsigned>(_mm_movemask_ps(_mm_cmple_ps(tn, limit))) & 3u;
@@ -117,16 +116,18 @@ class RayBoxTester {
 #endif
 
  private:
+  // What the two-child test uses first (a search interleaved with many others
+  // finds it in as few host cache lines as possible), then the scalar forms' state.
+#if defined(__SSE2__)
+  __m128 o_xy_, inv_xy_, o_z_, inv_z_;  ///< lanes as hits_sse2 lays them out
+  __m128 tmin4_;                        ///< the ray's tmin in every lane
+#endif
+  int near_pair_[3];  ///< per axis: float offset in BvhNode::box of both children's near bounds
+  int far_pair_[3];   ///< ... and of their far bounds
   float tmin_;
   float o_[3];
   float inv_[3];
   int near_side_[3];  ///< per axis: 0 (low bound) when the reciprocal is >= 0, else 1
-  int near_pair_[3];  ///< per axis: float offset in BvhNode::box of both children's near bounds
-  int far_pair_[3];   ///< ... and of their far bounds
-#if defined(__SSE2__)
-  __m128 o_xy_, inv_xy_, o_z_, inv_z_;  ///< lanes as hits_sse2 lays them out
-  __m128 tmin4_, widen_;                ///< the ray's tmin and kWiden in every lane
-#endif
 };
 
 }  // namespace vbsim

@@ -95,7 +95,9 @@ class Engine final : public CycleEngine {
   }
 
  private:
-  struct Slot {
+  // 64-byte aligned: a step's first host cache line holds the slot's core and
+  // request and the stepper's scalars.
+  struct alignas(64) Slot {
     Slot(const Bvh& bvh, const CandidateFilter& filter, int depth, uint32_t core_index)
         : core(core_index), stepper(bvh, filter, depth) {}
     uint32_t core;  ///< the core holding this slot
