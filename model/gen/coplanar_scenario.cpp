@@ -37,8 +37,8 @@ std::vector<ScenarioCase> generate_coplanar_scenario(const ScenarioSettings& s) 
     if (!h.valid()) continue;
     const RendererHitPoint rule = hitpoint.rule(i);
     const DVec3 up{0, 0, 1};
-    out.add(child_at_hit(parent, h, scene, RayKind::Reflect, to_fvec(mirror(dunit(to_dvec(parent.d)), up)), rule));
-    out.add(child_at_hit(parent, h, scene, RayKind::Diffuse, to_fvec(dunit(dadd(up, to_dvec(rng.unit_vector())))), rule));
+    out.add(child_at_hit(parent, h, scene, RayKind::Reflect, to_vec3f(mirror(dunit(to_dvec(parent.d)), up)), rule));
+    out.add(child_at_hit(parent, h, scene, RayKind::Diffuse, to_vec3f(dunit(up + to_dvec(rng.unit_vector()))), rule));
     out.add(shadow_child_at_hit(parent, h, scene, light, rule));
   }
   ScenarioCase sc;

@@ -6,25 +6,13 @@
 #include "datapath/closest_hit.h"
 #include "datapath/hit_point.h"
 #include "datapath/testers.h"
+#include "gen/optics.h"
 #include "gen/seeded_random.h"
 #include "replay/ray_emission.h"
 
 namespace vbsim {
 
 namespace {
-
-struct DVec {
-  double x, y, z;
-};
-DVec to_d(Vec3f v) { return {v.x, v.y, v.z}; }
-Vec3f to_f(DVec v) { return {float(v.x), float(v.y), float(v.z)}; }
-double ddot(DVec a, DVec b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-DVec dscale(double s, DVec a) { return {s * a.x, s * a.y, s * a.z}; }
-DVec dadd(DVec a, DVec b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-DVec dunit(DVec a) { return dscale(1.0 / std::sqrt(ddot(a, a)), a); }
-
-/// Mirror direction of d about the unit normal n.
-DVec reflect(DVec d, DVec n) { return dadd(d, dscale(-2.0 * ddot(d, n), n)); }
 
 class PathBuilder {
  public:
@@ -37,13 +25,15 @@ class PathBuilder {
   void run(Vec3f camera, Vec3f center, float radius, std::vector<TraceRay>& out) {
     out_ = &out;
     for (int path = 0; path < p_.paths; ++path) {
-      const DVec right{1, 0, 0}, up{0, 1, 0};
-      const DVec target = dadd(to_d(center), dadd(dscale(rng_.uniform(-0.7, 0.7) * radius, right),
-                                                  dscale(rng_.uniform(-0.7, 0.7) * radius, up)));
+      const DVec3 right{1, 0, 0}, up{0, 1, 0};
+      // The vertical offset is drawn first: the order the generated traces were made with.
+      const double dy = rng_.uniform(-0.7, 0.7) * radius;
+      const double dx = rng_.uniform(-0.7, 0.7) * radius;
+      const DVec3 target = to_dvec(center) + (dx * right + dy * up);
       TraceRay r;
       r.kind = RayKind::Primary;
       r.o = camera;
-      r.d = to_f(dadd(target, dscale(-1.0, to_d(camera))));
+      r.d = to_vec3f(target - to_dvec(camera));
       const bool ray_equation = p_.hit_points == PathsHitPoints::Alternate ? path % 2 == 0
                                                                            : p_.hit_points == PathsHitPoints::RayEquation;
       trace_path(r, ray_equation, 0);
@@ -76,20 +66,20 @@ class PathBuilder {
     const Triangle& tri = scene_.triangles[h.prim];
     const Vec3f p = ray_equation ? hit_point_ray(parent.o, parent.d, h.t)
                                  : hit_point_barycentric(tri, h.u, h.v);
-    const DVec ng = dunit(to_d(geometric_normal(tri)));
-    const DVec d = dunit(to_d(parent.d));
-    DVec ns = ng;
-    if (scene_.has_normals()) ns = dunit(to_d(scene_.shading_normal(h.prim, h.u, h.v)));
+    const DVec3 ng = dunit(to_dvec(geometric_normal(tri)));
+    const DVec3 d = dunit(to_dvec(parent.d));
+    DVec3 ns = ng;
+    if (scene_.has_normals()) ns = dunit(to_dvec(scene_.shading_normal(h.prim, h.u, h.v)));
     // Normals facing the incoming ray, for reflection and diffuse children.
     const double side = ddot(d, ng) < 0 ? 1.0 : -1.0;
-    const DVec ng_in = dscale(side, ng), ns_in = dscale(ddot(ns, ng_in) < 0 ? -1.0 : 1.0, ns);
+    const DVec3 ng_in = side * ng, ns_in = (ddot(ns, ng_in) < 0 ? -1.0 : 1.0) * ns;
 
     TraceRay child;
     child.parent = parent.id;
     child.set_parent_hit(h.prim, h.t, h.u, h.v);
     if (scene_.has_normals()) {
       child.has_parent_ns = true;
-      child.parent_ns = to_f(ns);
+      child.parent_ns = to_vec3f(ns);
     }
     child.o = p;
 
@@ -101,26 +91,24 @@ class PathBuilder {
 
     TraceRay refl = child;
     refl.kind = RayKind::Reflect;
-    refl.d = to_f(reflect(d, ns_in));
+    refl.d = to_vec3f(mirror(d, ns_in));
 
     TraceRay refr = child;
     refr.kind = RayKind::Refract;
     const bool entering = ddot(d, ng) < 0;
     const double eta = entering ? 1.0 / p_.ior : p_.ior;
-    const double cosi = -ddot(d, ng_in);
-    const double k = 1.0 - eta * eta * (1.0 - cosi * cosi);
-    if (k < 0) {
-      refr.kind = RayKind::Reflect;  // total internal reflection
-      refr.d = to_f(reflect(d, ng_in));
+    if (const auto t = refracted(d, ng_in, eta)) {
+      refr.d = to_vec3f(*t);
     } else {
-      refr.d = to_f(dadd(dscale(eta, d), dscale(eta * cosi - std::sqrt(k), ng_in)));
+      refr.kind = RayKind::Reflect;  // total internal reflection
+      refr.d = to_vec3f(mirror(d, ng_in));
     }
 
     TraceRay diff = child;
     diff.kind = RayKind::Diffuse;
-    const DVec s = to_d(rng_.unit_vector());
-    diff.d = to_f(dunit(dadd(ng_in, s)));  // cosine-weighted about the facing normal
-    if (diff.d == Vec3f{0, 0, 0}) diff.d = to_f(ng_in);
+    const DVec3 s = to_dvec(rng_.unit_vector());
+    diff.d = to_vec3f(dunit(ng_in + s));  // cosine-weighted about the facing normal
+    if (diff.d == Vec3f{0, 0, 0}) diff.d = to_vec3f(ng_in);
 
     const uint64_t pick = rng_.below(3);
     TraceRay* kids[3] = {&refl, &refr, &diff};

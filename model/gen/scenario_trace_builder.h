@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "datapath/dvec3.h"
 #include "gen/scenario.h"
 #include "scene/bvh.h"
 #include "scene/scene.h"
@@ -58,22 +59,6 @@ class ScenarioTraceBuilder {
   std::vector<TraceRay> rays_;
 };
 
-/// Double-precision helpers for building directions and geometry before rounding.
-struct DVec3 {
-  double x = 0, y = 0, z = 0;
-};
-inline DVec3 operator+(DVec3 a, DVec3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-inline DVec3 operator-(DVec3 a, DVec3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-inline DVec3 operator*(double s, DVec3 a) { return {s * a.x, s * a.y, s * a.z}; }
-inline double ddot(DVec3 a, DVec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-inline DVec3 dcross(DVec3 a, DVec3 b) {
-  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
-inline DVec3 dunit(DVec3 a) { return (1.0 / std::sqrt(ddot(a, a))) * a; }
-inline DVec3 to_dvec(Vec3f v) { return {v.x, v.y, v.z}; }
-inline Vec3f to_vec3f(DVec3 v) {
-  return {static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z)};
-}
 /// Unit geometric normal of `tri` in double precision (from its float vertices).
 DVec3 unit_normal(const Triangle& tri);
 /// A unit vector perpendicular to the unit vector `n`.

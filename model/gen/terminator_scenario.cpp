@@ -43,7 +43,7 @@ ScenarioCase terminator_case(int segments, int64_t camera_rays, double band_frac
   const Scene scene = make_scene(mesh.triangles, mesh.normals);
   const Bvh bvh = build_bvh(scene);
   const RendererTracer tracer(scene, bvh);
-  const Vec3f light = to_fvec(dscale(kLightDistance, kLightDir));
+  const Vec3f light = to_vec3f(kLightDistance * kLightDir);
 
   TraceRays out;
   int64_t band_count = 0;
