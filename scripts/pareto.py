@@ -35,6 +35,7 @@ ERROR_KINDS = ("self_hit", "false_hit", "missed")
 
 
 def ops_per_ray(row):
+    """The method's operations per ray (method_costs.h) from a `vbsim score` row."""
     cost, av, rays = row["config"]["cost_ops"], row["avoidance"], row["rays"]
     total = cost["emission"] * rays + cost["candidate"] * av["candidates"] + cost["suspect"] * av["suspects"]
     return total / rays if rays else 0.0

@@ -26,6 +26,7 @@ import sys
 from concurrent.futures import ThreadPoolExecutor
 
 import sweep_definitions
+from pareto import ops_per_ray
 from sweep_charts import plot_sweep, breakdown_text
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -71,14 +72,6 @@ def generate_point(vbsim, sweep, x, workdir):
 def method_spec(method, x):
     """The `vbsim score` method entry of a method at sweep value x ('{x}' replaced)."""
     return method["spec"].replace("{x}", format_value(x))
-
-
-def ops_per_ray(row):
-    """The method's operations per ray (method_costs.h) from a score row."""
-    cost, av, rays = row["config"]["cost_ops"], row["avoidance"], row["rays"]
-    total = (cost["emission"] * rays + cost["candidate"] * av["candidates"]
-             + cost["suspect"] * av["suspects"])
-    return total / rays if rays else 0.0
 
 
 def score_point(vbsim, sweep, x, traces):
