@@ -45,12 +45,14 @@ class CacheLevel {
     if (horizon >= next_fill_) retire_slow(horizon);
   }
   /// A request for `line` arriving at cycle `t` (counted; a miss's MSHR wait too).
-  /// A miss must be followed by hold() on the MSHR it names.
+  /// A miss must be followed by hold() on the MSHR it names. `Ways`, when not
+  /// 0, is the associativity known at compile time (the caller checked it).
+  template <uint32_t Ways = 0>
   Access access(uint64_t line, uint64_t t) {
     ++counters_.accesses;
     // A line in flight is never in the tag array, so the order of the two checks is free.
     const uint32_t set = tags_.set_of(line);
-    if (tags_.touch_in(set, line)) {
+    if (tags_.touch_in<Ways>(set, line)) {
       ++counters_.hits;
       return {Outcome::Hit, t + hit_latency_, 0, 0};
     }
@@ -77,7 +79,8 @@ class CacheLevel {
   /// Records the miss of `line` that the last access() answered with Miss: it
   /// holds the MSHR access() named until its data fill at `fill` (> every
   /// horizon retired so far).
-  /// Inlined into the hierarchy's line reads (below the class).
+  /// Inlined into the hierarchy's line reads (below the class); `Ways` as for access().
+  template <uint32_t Ways = 0>
   void hold(uint64_t line, uint64_t fill);
 
   uint32_t hit_latency() const { return hit_latency_; }
@@ -93,10 +96,11 @@ class CacheLevel {
     return found;
   }
   /// Installs MSHR `mshr`'s line in flight; the MSHR holds no line afterwards.
+  template <uint32_t Ways = 0>
   void install(uint32_t mshr) {
     const uint64_t line = flight_line_[mshr];
     const uint32_t set = tags_.set_of(line);
-    tags_.install_in(set, line);
+    tags_.install_in<Ways>(set, line);
     --in_flight_per_set_[set];
     flight_line_[mshr] = LruCache::kNoLine;
   }
@@ -128,11 +132,12 @@ class CacheLevel {
   LevelCounters counters_;
 };
 
+template <uint32_t Ways>
 __attribute__((always_inline)) inline void CacheLevel::hold(uint64_t line, uint64_t fill) {
   // The front leaves the ring; its line, if still in flight, filled before
   // this miss started: present now.
   const uint32_t mshr = static_cast<uint32_t>(ring_[head_] & index_mask_);
-  if (pending_from_ == 0) install(mshr);
+  if (pending_from_ == 0) install<Ways>(mshr);
   else --pending_from_;
   head_ = static_cast<uint32_t>((head_ + 1) & index_mask_);
 

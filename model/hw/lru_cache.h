@@ -23,11 +23,14 @@ class LruCache {
   /// True when `line` is present; a hit makes it the most recently used of its set.
   bool touch(uint64_t line) { return touch_in(set_of(line), line); }
   /// touch() of `line`, whose set (set_of(line)) the caller already knows.
+  /// `Ways`, when not 0, is ways() known at compile time (the caller checked it).
+  template <uint32_t Ways = 0>
   bool touch_in(uint32_t set_index, uint64_t line) {
-    uint64_t* set = set_begin(set_index);
+    const uint32_t ways = Ways ? Ways : ways_;
+    uint64_t* set = &lines_[static_cast<size_t>(set_index) * ways];
     if (set[0] == line) return true;  // already the most recent: nothing moves
-    const uint32_t w = find_way(set, line);
-    if (w == ways_) return false;
+    const uint32_t w = Ways ? find_in<Ways>(set, line) : find_way(set, line);
+    if (w == ways) return false;
     for (uint32_t i = w; i > 0; --i) set[i] = set[i - 1];  // the line becomes the most recent
     set[0] = line;
     return true;
@@ -38,15 +41,22 @@ class LruCache {
   /// replacing an empty way or else the least recently used line. Returns the
   /// line it replaced, or kNoLine.
   uint64_t install(uint64_t line) { return install_in(set_of(line), line); }
-  /// install() of `line`, whose set (set_of(line)) the caller already knows.
+  /// install() of `line`, whose set (set_of(line)) the caller already knows;
+  /// `Ways` as for touch_in.
+  template <uint32_t Ways = 0>
   uint64_t install_in(uint32_t set_index, uint64_t line) {
-    uint64_t* set = set_begin(set_index);
-    const uint64_t replaced = set[ways_ - 1];  // the least recent line, or an empty way
-    switch (ways_) {  // every way moves one place down: unrolled for the usual associativities
-      case 4: age<4>(set); break;
-      case 8: age<8>(set); break;
-      case 16: age<16>(set); break;
-      default: age(set, ways_);
+    const uint32_t ways = Ways ? Ways : ways_;
+    uint64_t* set = &lines_[static_cast<size_t>(set_index) * ways];
+    const uint64_t replaced = set[ways - 1];  // the least recent line, or an empty way
+    if constexpr (Ways != 0) {
+      age<Ways>(set);
+    } else {
+      switch (ways_) {  // every way moves one place down: unrolled for the usual associativities
+        case 4: age<4>(set); break;
+        case 8: age<8>(set); break;
+        case 16: age<16>(set); break;
+        default: age(set, ways_);
+      }
     }
     set[0] = line;
     return replaced;
@@ -63,7 +73,6 @@ class LruCache {
   }
 
  private:
-  uint64_t* set_begin(uint32_t set_index) { return &lines_[static_cast<size_t>(set_index) * ways_]; }
   const uint64_t* set_at(uint64_t line) const { return &lines_[static_cast<size_t>(set_of(line)) * ways_]; }
   /// Way of `line` in `set`, or ways_: every way is compared (no early exit, so
   /// no branch depends on where the line is).

@@ -29,13 +29,45 @@ nlohmann::json level_json(const LevelCounters& c) {
 
 MemoryHierarchy::MemoryHierarchy(const MemoryConfig& config, int cores)
     : config_(config),
+      shape_(config.l1.ways == 4 && config.l2.ways == 8    ? Shape::L1x4L2x8
+             : config.l1.ways == 4 && config.l2.ways == 16 ? Shape::L1x4L2x16
+                                                           : Shape::Any),
       line_shift_(log2_of(config.l1.line_bytes)),
       l1_(static_cast<size_t>(cores), CacheLevel(config.l1)),
       l2_(config.l2),
       dram_(config.dram_latency, config.dram_bytes_per_cycle, config.l2.line_bytes,
             config.dram_max_outstanding) {}
 
+// Inlined into both of read()'s calls (the first line's, the loop's).
+template <uint32_t L1Ways, uint32_t L2Ways>
+__attribute__((always_inline)) inline uint64_t MemoryHierarchy::read_line(CacheLevel& l1, uint64_t line,
+                                                                         uint64_t now) {
+  const CacheLevel::Access miss = l1.access<L1Ways>(line, now);
+  if (miss.outcome != CacheLevel::Outcome::Miss) return miss.ready;
+  const uint64_t fill = read_l2<L2Ways>(line, miss.start + l1.hit_latency());
+  l1.hold<L1Ways>(line, fill);
+  return fill;
+}
+
+template <uint32_t L2Ways>
+__attribute__((always_inline)) inline uint64_t MemoryHierarchy::read_l2(uint64_t line, uint64_t t) {
+  const CacheLevel::Access miss = l2_.access<L2Ways>(line, t);
+  if (miss.outcome != CacheLevel::Outcome::Miss) return miss.ready;
+  const uint64_t fill = dram_.read_line(miss.start + l2_.hit_latency());
+  l2_.hold<L2Ways>(line, fill);
+  return fill;
+}
+
 uint64_t MemoryHierarchy::read(int core, uint64_t addr, uint32_t bytes, uint64_t now) {
+  switch (shape_) {  // the presets' associativities: their loops unrolled, no switch per lookup
+    case Shape::L1x4L2x8: return read_shaped<4, 8>(core, addr, bytes, now);
+    case Shape::L1x4L2x16: return read_shaped<4, 16>(core, addr, bytes, now);
+    default: return read_shaped<0, 0>(core, addr, bytes, now);
+  }
+}
+
+template <uint32_t L1Ways, uint32_t L2Ways>
+uint64_t MemoryHierarchy::read_shaped(int core, uint64_t addr, uint32_t bytes, uint64_t now) {
   if (core < 0 || static_cast<size_t>(core) >= l1_.size())
     throw std::out_of_range("memory: read by core " + std::to_string(core) + " of " +
                             std::to_string(l1_.size()));
@@ -47,9 +79,9 @@ uint64_t MemoryHierarchy::read(int core, uint64_t addr, uint32_t bytes, uint64_t
 
   const uint64_t first = addr >> line_shift_;
   const uint64_t last = (addr + (bytes ? bytes - 1 : 0)) >> line_shift_;
-  uint64_t ready = read_line(l1, first, now);  // a node read: its only line
+  uint64_t ready = read_line<L1Ways, L2Ways>(l1, first, now);  // a node read: its only line
   for (uint64_t line = first + 1; line <= last; ++line) {
-    const uint64_t r = read_line(l1, line, now);
+    const uint64_t r = read_line<L1Ways, L2Ways>(l1, line, now);
     if (r > ready) ready = r;
   }
   if (reads_ == 0) first_now_ = now;
@@ -58,24 +90,6 @@ uint64_t MemoryHierarchy::read(int core, uint64_t addr, uint32_t bytes, uint64_t
   bytes_ += bytes;
   line_requests_ += last - first + 1;
   return ready;
-}
-
-// Inlined into both of read()'s calls (the first line's, the loop's).
-__attribute__((always_inline)) inline uint64_t MemoryHierarchy::read_line(CacheLevel& l1, uint64_t line,
-                                                                         uint64_t now) {
-  const CacheLevel::Access miss = l1.access(line, now);
-  if (miss.outcome != CacheLevel::Outcome::Miss) return miss.ready;
-  const uint64_t fill = read_l2(line, miss.start + l1.hit_latency());
-  l1.hold(line, fill);
-  return fill;
-}
-
-__attribute__((always_inline)) inline uint64_t MemoryHierarchy::read_l2(uint64_t line, uint64_t t) {
-  const CacheLevel::Access miss = l2_.access(line, t);
-  if (miss.outcome != CacheLevel::Outcome::Miss) return miss.ready;
-  const uint64_t fill = dram_.read_line(miss.start + l2_.hit_latency());
-  l2_.hold(line, fill);
-  return fill;
 }
 
 nlohmann::json MemoryHierarchy::stats() const {

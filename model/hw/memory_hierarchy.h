@@ -39,10 +39,19 @@ class MemoryHierarchy final : public MemoryPort {
   }
 
  private:
+  /// read() for an L1 of `L1Ways` and an L2 of `L2Ways` ways (0: any, read at run time).
+  template <uint32_t L1Ways, uint32_t L2Ways>
+  uint64_t read_shaped(int core, uint64_t addr, uint32_t bytes, uint64_t now);
+  template <uint32_t L1Ways, uint32_t L2Ways>
   uint64_t read_line(CacheLevel& l1, uint64_t line, uint64_t now);
+  template <uint32_t L2Ways>
   uint64_t read_l2(uint64_t line, uint64_t t);
 
+  /// The associativities read() has a form for with the ways known at compile time.
+  enum class Shape { Any, L1x4L2x8, L1x4L2x16 };
+
   MemoryConfig config_;
+  Shape shape_;
   uint32_t line_shift_;
   std::vector<CacheLevel> l1_;  // one per core
   CacheLevel l2_;

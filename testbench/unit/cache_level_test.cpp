@@ -73,41 +73,60 @@ class PlainLevel {
 
 }  // namespace
 
-TEST_CASE("Cache level MSHRs match a plain scan on random streams", "[memory][mshr]") {
-  struct Shape { uint32_t sets, ways, mshrs; };
-  for (const Shape shape : {Shape{4, 2, 1}, Shape{4, 2, 3}, Shape{3, 4, 8}, Shape{16, 4, 8}, Shape{8, 8, 32}}) {
-    const uint32_t hit_latency = 2;
-    CacheLevel level(CacheConfig{shape.sets * shape.ways * 64, shape.ways, 64, hit_latency, shape.mshrs});
-    PlainLevel plain(shape.sets, shape.ways, hit_latency, shape.mshrs);
-    std::mt19937_64 rng(shape.sets * 1000 + shape.mshrs);
-    std::uniform_int_distribution<uint64_t> line_of(0, 3 * uint64_t{shape.sets} * shape.ways);
-    std::uniform_int_distribution<int> step(0, 1), near_far(0, 3), near(1, 20), far(100, 130);
-    uint64_t t = 0, misses = 0, merges = 0, waits = 0;
-    for (int i = 0; i < 20000; ++i) {
-      t += static_cast<uint64_t>(step(rng));
-      const uint64_t line = line_of(rng);
-      level.retire(t);
-      plain.retire(t);
-      const CacheLevel::Access got = level.access(line, t), want = plain.access(line, t);
-      INFO("shape " << shape.sets << "x" << shape.ways << " mshrs " << shape.mshrs << " request " << i);
-      REQUIRE(got.outcome == want.outcome);
-      if (got.outcome != CacheLevel::Outcome::Miss) {
-        REQUIRE(got.ready == want.ready);
-        merges += got.outcome == CacheLevel::Outcome::Merge;
-        continue;
-      }
-      REQUIRE(got.mshr == want.mshr);
-      REQUIRE(got.start == want.start);
-      ++misses;
-      waits += got.start > t;
-      // Fills far out of order, and equal fill cycles now and then.
-      const uint64_t fill = got.start + hit_latency + static_cast<uint64_t>(near_far(rng) ? near(rng) : far(rng));
-      level.hold(line, fill);
-      plain.hold(want.mshr, line, fill);
+struct Shape {
+  uint32_t sets, ways, mshrs;
+};
+
+/// Drives a CacheLevel (its lookups and holds compiled for `Ways` ways, 0: read
+/// at run time) and the plain model with one random stream; every answer must agree.
+template <uint32_t Ways>
+void check_against_plain(const Shape shape) {
+  const uint32_t hit_latency = 2;
+  CacheLevel level(CacheConfig{shape.sets * shape.ways * 64, shape.ways, 64, hit_latency, shape.mshrs});
+  PlainLevel plain(shape.sets, shape.ways, hit_latency, shape.mshrs);
+  std::mt19937_64 rng(shape.sets * 1000 + shape.mshrs);
+  std::uniform_int_distribution<uint64_t> line_of(0, 3 * uint64_t{shape.sets} * shape.ways);
+  std::uniform_int_distribution<int> step(0, 1), near_far(0, 3), near(1, 20), far(100, 130);
+  uint64_t t = 0, misses = 0, merges = 0, waits = 0;
+  for (int i = 0; i < 20000; ++i) {
+    t += static_cast<uint64_t>(step(rng));
+    const uint64_t line = line_of(rng);
+    level.retire(t);
+    plain.retire(t);
+    const CacheLevel::Access got = level.access<Ways>(line, t), want = plain.access(line, t);
+    INFO("shape " << shape.sets << "x" << shape.ways << " mshrs " << shape.mshrs << " compiled ways " << Ways
+                  << " request " << i);
+    REQUIRE(got.outcome == want.outcome);
+    if (got.outcome != CacheLevel::Outcome::Miss) {
+      REQUIRE(got.ready == want.ready);
+      merges += got.outcome == CacheLevel::Outcome::Merge;
+      continue;
     }
-    CHECK(level.counters().misses == misses);
-    CHECK(misses > 1000);  // the stream exercised misses, merges and full MSHRs
-    CHECK(merges > 100);
-    CHECK(waits > 100);
+    REQUIRE(got.mshr == want.mshr);
+    REQUIRE(got.start == want.start);
+    ++misses;
+    waits += got.start > t;
+    // Fills far out of order, and equal fill cycles now and then.
+    const uint64_t fill = got.start + hit_latency + static_cast<uint64_t>(near_far(rng) ? near(rng) : far(rng));
+    level.template hold<Ways>(line, fill);
+    plain.hold(want.mshr, line, fill);
   }
+  CHECK(level.counters().misses == misses);
+  CHECK(misses > 1000);  // the stream exercised misses, merges and full MSHRs
+  CHECK(merges > 100);
+  CHECK(waits > 100);
+}
+
+TEST_CASE("Cache level MSHRs match a plain scan on random streams", "[memory][mshr]") {
+  for (const Shape shape :
+       {Shape{4, 2, 1}, Shape{4, 2, 3}, Shape{3, 4, 8}, Shape{16, 4, 8}, Shape{8, 8, 32}, Shape{8, 16, 16}})
+    check_against_plain<0>(shape);
+}
+
+TEST_CASE("Cache level lookups compiled for 4 8 and 16 ways match the plain model", "[memory][mshr]") {
+  // The forms MemoryHierarchy uses for the presets' associativities.
+  check_against_plain<4>(Shape{3, 4, 8});
+  check_against_plain<4>(Shape{16, 4, 8});
+  check_against_plain<8>(Shape{8, 8, 32});
+  check_against_plain<16>(Shape{8, 16, 16});
 }
