@@ -119,18 +119,19 @@ class Engine final : public CycleEngine {
 
   /// Slot `id`'s next step, s.pending, completes at cycle `at`.
   void schedule_step(uint64_t at, uint32_t id) {
-    // The step reads its node or triangles when it is handled, many events
-    // later: ask the host's caches for them now (no effect on any result).
-    // Chosen by table, not by a branch on the kind (the host mispredicts the
-    // kind's sequence): a node's record, else the triangles at the index (for
-    // a refill or the end, a harmless prefetch of some triangle; a prefetch
-    // never faults).
-    const Slot& s = slots_[id];
-    const StepRequest& r = s.pending;
-    const size_t is_node = r.kind == StepRequest::Node ? 1 : 0;
-    __builtin_prefetch(reinterpret_cast<const void*>(host_base_[is_node] + host_stride_[is_node] * r.index));
-    if constexpr (std::is_same_v<Memory, MemoryHierarchy>)
+    // The step's read looks up its first line's L1 and L2 tag sets when it is
+    // handled, many events later: ask the host's caches for them now (no
+    // effect on any result). The address by table, not by a branch on the
+    // kind (the host mispredicts the kind's sequence): a node's, else the
+    // triangles' at the index (for a refill or the end, some triangle's: harmless).
+    // The node record itself is not prefetched here: that early, it cost more
+    // than it saved (docs/results/speed.md, round 7).
+    if constexpr (std::is_same_v<Memory, MemoryHierarchy>) {
+      const Slot& s = slots_[id];
+      const StepRequest& r = s.pending;
+      const size_t is_node = r.kind == StepRequest::Node ? 1 : 0;
       memory_.prefetch(static_cast<int>(s.core), model_base_[is_node] + model_stride_[is_node] * r.index);
+    }
     events_.schedule(at, id);
   }
 
@@ -298,11 +299,7 @@ class Engine final : public CycleEngine {
   RayFeed feed_;
   RayResultSink sink_;
   bool avoidance_in_use_;
-  // Per kind (0: a leaf's triangles, 1: a node), the host address and the
-  // modelled address of record `i`: base + stride * i.
-  const uintptr_t host_base_[2] = {reinterpret_cast<uintptr_t>(bvh_.tris.data()),
-                                   reinterpret_cast<uintptr_t>(bvh_.nodes.data())};
-  const uintptr_t host_stride_[2] = {sizeof(BvhTriangle), sizeof(BvhNode)};
+  // Per kind (0: a leaf's triangles, 1: a node), the modelled address of record `i`: base + stride * i.
   const uint64_t model_base_[2] = {map_.triangle(0), map_.node(0)};
   const uint64_t model_stride_[2] = {BvhAddressMap::kTriangleBytes, BvhAddressMap::kNodeBytes};
   std::vector<Core> cores_;
