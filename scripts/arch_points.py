@@ -4,8 +4,9 @@ A point is one `vbsim replay TRACE --mode cycle --config POINT.json --stats OUT.
 process: a trace, a configuration (an `hw` object and nothing else) and a method
 written in `vbsim score`'s syntax, `METHOD[+METHOD][:KEY=VALUE...]` with KEY a
 `vbsim replay` option without its dashes. Finished points are kept in a cache
-folder under a key made of the trace's contents, the configuration and the method,
-so a rerun skips every point it has already done.
+folder under a key made of the vbsim binary's contents, the trace's contents, the
+configuration and the method, so a rerun skips every point it has already done
+with the same build (a rebuilt model reruns them all).
 """
 import hashlib
 import json
@@ -38,7 +39,7 @@ def method_args(spec):
 
 
 def trace_digest(path):
-    """SHA-256 of a trace file's bytes (computed once per run)."""
+    """SHA-256 of a file's bytes, a trace's or the vbsim binary's (computed once per run)."""
     with _digest_lock:
         if path not in _digests:
             h = hashlib.sha256()
@@ -49,15 +50,15 @@ def trace_digest(path):
         return _digests[path]
 
 
-def point_key(trace, config, method):
-    text = json.dumps({"trace": trace_digest(trace), "config": config, "method": method},
-                      sort_keys=True)
+def point_key(vbsim, trace, config, method):
+    text = json.dumps({"vbsim": trace_digest(vbsim), "trace": trace_digest(trace), "config": config,
+                       "method": method}, sort_keys=True)
     return hashlib.sha256(text.encode()).hexdigest()[:20]
 
 
 def run_point(vbsim, cache, trace, config, method, fresh=False):
     """Stats JSON of one point; from the cache when the same point was done."""
-    key = point_key(trace, config, method)
+    key = point_key(vbsim, trace, config, method)
     stats_path = os.path.join(cache, key + ".stats.json")
     if not fresh and os.path.exists(stats_path):
         with open(stats_path) as f:

@@ -21,9 +21,7 @@ def limit_text(r):
     if r["rays"] < 4 * slots:
         return head + f"a short run: {r['rays']} rays for {slots} slots, filling and draining dominate"
     if share >= 0.15:
-        note = " (in-order issue behind slower memory reads)" if (
-            cause != "memory_wait" and not r["ideal_memory"]) else ""
-        return head + f"{STALL_LABELS[cause]} takes {share:.0%} of slot-cycles{note}" + memory_side(r)
+        return head + f"{STALL_LABELS[cause]} takes {share:.0%} of slot-cycles" + memory_side(r)
     if r["utilisation"]["slots"] >= 0.8:
         return head + f"too few slots to hide a {r['mean_latency']:.0f}-cycle ray latency"
     return head + f"slots only {r['utilisation']['slots']:.0%} occupied (fill and drain of the run)"

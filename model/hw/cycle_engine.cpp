@@ -200,7 +200,7 @@ class Engine final : public CycleEngine {
     s.dispatched = at;
     KindStats& ks = replayer_.stats().by_kind[static_cast<int>(s.tr.kind)];
     s.pending = s.stepper.begin(s.er.ray, replayer_.any_hit(s.tr, s.er), ks.candidates, ks.traversal);
-    const uint64_t issue = core.box.issue(at);  // the root box test: bounds latched with the ray
+    const uint64_t issue = core.box.issue(at, at);  // the root box test: bounds latched with the ray
     record("box", id, issue, issue + core.box.latency());
     schedule_step(issue + core.box.latency(), id);
   }
@@ -216,7 +216,7 @@ class Engine final : public CycleEngine {
         const uint64_t ready = memory_.read(core_index, map_.node(s.pending.index), BvhAddressMap::kNodeBytes, now);
         ++counters_.node_fetches;
         counters_.memory_wait_cycles += ready - now;
-        const uint64_t issue = core.box.issue(ready);
+        const uint64_t issue = core.box.issue(ready, now);
         const uint64_t end = issue + core.box.latency();
         record("node", id, now, end);
         s.pending = s.stepper.node_step();
@@ -230,13 +230,13 @@ class Engine final : public CycleEngine {
         counters_.memory_wait_cycles += ready - now;
         uint64_t end = ready, next_ready = ready;
         for (uint32_t i = 0; i < count; ++i) {
-          const uint64_t issue = core.tri.issue(next_ready);
+          const uint64_t issue = core.tri.issue(next_ready, now);
           next_ready = issue + 1;  // a slot hands its pipelines one triangle per cycle
           const uint64_t result = issue + core.tri.latency();
           end = std::max(end, result);
           const TriangleStepOutcome out = s.stepper.triangle_step(first + i);
           if (out.suspect && avoidance_in_use_) {
-            const uint64_t a = core.avoid.issue(result);
+            const uint64_t a = core.avoid.issue(result, now);
             ++counters_.avoidance_ops_by_kind[static_cast<int>(s.tr.kind)];
             record("avoidance", id, a, a + core.avoid.latency());
             end = std::max(end, a + core.avoid.latency());

@@ -3,11 +3,12 @@
 arch_report.py) on hand-made inputs."""
 import os
 import sys
+import tempfile
 import unittest
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
 from arch_families import sample  # noqa: E402
-from arch_points import bound_terms, merge, method_args, set_path  # noqa: E402
+from arch_points import bound_terms, merge, method_args, point_key, set_path  # noqa: E402
 from arch_report import limit_text  # noqa: E402
 
 
@@ -34,6 +35,19 @@ class MethodArgsTest(unittest.TestCase):
     def test_an_option_without_value_stops_the_run(self):
         with self.assertRaises(SystemExit):
             method_args("tmin:tmin-eps")
+
+
+class PointKeyTest(unittest.TestCase):
+    def test_a_rebuilt_model_does_not_reuse_cached_points(self):
+        with tempfile.TemporaryDirectory() as d:
+            paths = {}
+            for name, text in (("old", b"model A"), ("new", b"model B"), ("same", b"model A"), ("trace", b"{}")):
+                paths[name] = os.path.join(d, name)
+                with open(paths[name], "wb") as f:
+                    f.write(text)
+            key = lambda binary: point_key(paths[binary], paths["trace"], {"cores": 1}, "none")  # noqa: E731
+            self.assertNotEqual(key("old"), key("new"))
+            self.assertEqual(key("old"), key("same"))  # the same bytes: the cache holds
 
 
 class BoundTest(unittest.TestCase):
