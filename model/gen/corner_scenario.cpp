@@ -45,7 +45,6 @@ std::vector<ScenarioCase> generate_corner_scenario(const ScenarioSettings& s) {
   const double gap_max = s.number("gap_max", 1e-3);
   const int64_t children = s.integer("children", 4);
   const HitPointRule rule = read_hit_point_rule(s, HitPointRule::Barycentric);
-  if (s.rays() <= 0) throw std::runtime_error("option '--rays': must be > 0");
   require_setting_range("size", size, 1e-30, 1e30);
   require_setting_range("distance", distance, 0, 1e30);
   require_setting_range("grid", grid, 1, 1000);

@@ -73,7 +73,6 @@ std::vector<ScenarioCase> generate_crevice_scenario(const ScenarioSettings& s) {
   p.gap_max = s.number("gap_max", 1e-2);
   p.children = s.integer("children", 4);
   const HitPointRule rule = read_hit_point_rule(s, HitPointRule::Barycentric);
-  if (s.rays() <= 0) throw std::runtime_error("option '--rays': must be > 0");
   require_setting_range("size", p.size, 1e-30, 1e30);
   require_setting_range("distance", p.distance, 0, 1e30);
   require_setting_range("grid", p.grid, 1, 1000);

@@ -65,7 +65,6 @@ std::vector<ScenarioCase> generate_grazing_scenario(const ScenarioSettings& s) {
   p.angle_max = s.number("angle_max", 10 * M_PI / 180);
   p.angles = s.integer("angles", 8);
   const HitPointRule rule = read_hit_point_rule(s, HitPointRule::Barycentric);
-  if (s.rays() <= 0) throw std::runtime_error("option '--rays': must be > 0");
   require_setting_range("size", p.size, 1e-30, 1e30);
   require_setting_range("distance", p.distance, 0, 1e30);
   require_setting_range("radius", p.radius, p.size, 1e30);

@@ -104,7 +104,6 @@ std::vector<ScenarioCase> generate_random_triangles_scenario(const ScenarioSetti
     throw std::runtime_error(fmt::format("option '--set protocol={}': expected rtg or pbrt", protocol));
   const bool rtg = protocol == "rtg";
   const HitPointRule rule = read_hit_point_rule(s, HitPointRule::Barycentric);
-  if (s.rays() <= 0) throw std::runtime_error("option '--rays': must be > 0");
   RtgParams rp{};
   PbrtParams pp{};
   if (rtg) {

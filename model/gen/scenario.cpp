@@ -35,6 +35,11 @@ const std::string* ScenarioSettings::find(const std::string& key) const {
   return it == values_.end() ? nullptr : &it->second;
 }
 
+ScenarioSettings::ScenarioSettings(int64_t rays, uint64_t seed, std::map<std::string, std::string> values)
+    : rays_(rays), seed_(seed), values_(std::move(values)) {
+  if (rays_ <= 0) throw std::runtime_error("option '--rays': must be > 0");
+}
+
 double ScenarioSettings::number(const std::string& key, double fallback) const {
   const std::string* v = find(key);
   if (!v) return fallback;

@@ -21,8 +21,8 @@ namespace vbsim {
 /// parameters read through typed getters that name the key on a bad value.
 class ScenarioSettings {
  public:
-  ScenarioSettings(int64_t rays, uint64_t seed, std::map<std::string, std::string> values)
-      : rays_(rays), seed_(seed), values_(std::move(values)) {}
+  /// Throws std::runtime_error ("option '--rays': must be > 0") unless rays > 0.
+  ScenarioSettings(int64_t rays, uint64_t seed, std::map<std::string, std::string> values);
   int64_t rays() const { return rays_; }
   uint64_t seed() const { return seed_; }
   /// The value of `key` as a finite number, or `fallback` when not set.

@@ -38,9 +38,9 @@ class HitPointSetting {
   std::string mode_;
 };
 
-/// Rays per case when `total` rays are spread over `cases` cases (at least 1).
+/// Rays per case when `total` rays (> 0: ScenarioSettings checks it) are spread
+/// over `cases` cases (at least 1).
 inline int64_t rays_per_case(int64_t total, size_t cases) {
-  if (total <= 0) throw std::runtime_error("option '--rays': must be > 0");
   return std::max<int64_t>(1, total / static_cast<int64_t>(std::max<size_t>(cases, 1)));
 }
 

@@ -37,18 +37,6 @@ uint64_t UnitPipelines::issue_general(uint64_t ready) {
   return best;
 }
 
-uint64_t UnitPipelines::issue_single_beyond(uint64_t block) {
-  for (;; ++block) {
-    Word& w = word(0, block);
-    const uint64_t bits = w.bits & current_mask(w.block, block);
-    if (bits == ~uint64_t{0}) continue;
-    const uint64_t at = block * kWordBits + static_cast<uint64_t>(__builtin_ctzll(~bits));
-    w.bits = bits | uint64_t{1} << (at % kWordBits);
-    w.block = block;
-    return at;
-  }
-}
-
 void UnitPipelines::grow(uint64_t block) {
   if (block < now_block_) throw std::logic_error("UnitPipelines: an operation ready before the current event");
   size_t words = words_per_pipe_;

@@ -55,19 +55,18 @@ class UnitPipelines {
 
   /// One pipeline accepting an operation every cycle: the first clear bit at or after `ready`.
   uint64_t issue_single(uint64_t ready) {
-    const uint64_t block = ready / kWordBits;
-    if (block - now_block_ >= words_per_pipe_) grow(block);
-    Word& w = ring_[block & word_mask_];
-    const uint64_t bits = w.bits & current_mask(w.block, block);
-    const uint64_t free_bits = ~bits >> (ready % kWordBits);  // bit k: cycle ready + k is free
-    if (free_bits == 0) return issue_single_beyond(block + 1);  // the rest of the word is taken
-    const uint64_t at = ready + static_cast<uint64_t>(__builtin_ctzll(free_bits));
-    w.bits = bits | uint64_t{1} << (at % kWordBits);  // at is in this word
-    w.block = block;
-    return at;
+    for (uint64_t from = ready;; from = (from / kWordBits + 1) * kWordBits) {  // then the next word's first cycle
+      const uint64_t block = from / kWordBits;
+      Word& w = word(0, block);
+      const uint64_t bits = w.bits & current_mask(w.block, block);
+      const uint64_t free_bits = ~bits >> (from % kWordBits);  // bit k: cycle from + k is free
+      if (free_bits == 0) continue;                             // the rest of the word is taken
+      const uint64_t at = from + static_cast<uint64_t>(__builtin_ctzll(free_bits));
+      w.bits = bits | uint64_t{1} << (at % kWordBits);
+      w.block = block;
+      return at;
+    }
   }
-  /// issue_single's search from the first cycle of `block` on.
-  uint64_t issue_single_beyond(uint64_t block);
   uint64_t issue_general(uint64_t ready);
 
   /// The 64 cycles of one block in one pipeline: a bit per cycle (set: taken),
