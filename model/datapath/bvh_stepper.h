@@ -143,6 +143,13 @@ class BvhStepper {
   /// Host bytes of the traversal stack, the stepper's last member (a timing
   /// model may prefetch the stepper's other members before a step).
   static constexpr size_t stack_host_bytes() { return sizeof(Entry) * (kTraversalStackDepth + 1); }
+  /// Host bytes from the stepper's start that node_step() reads (pop() reads
+  /// its stack too): the scalars, 44 bytes padded to the box tester's
+  /// alignment, then the box tester's two-child state.
+  static constexpr size_t node_step_host_bytes() {
+    constexpr size_t align = alignof(std::optional<RayBoxTester>);
+    return (44 + align - 1) / align * align + RayBoxTester::two_child_host_bytes();
+  }
 
  private:
   StepRequest done() {

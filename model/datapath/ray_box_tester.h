@@ -10,6 +10,7 @@
 // test has an SSE2 form (both children in two lanes) and a scalar form; they
 // round identically, so which one runs never changes a search.
 #pragma once
+#include <cstddef>
 #include <algorithm>
 #include <cmath>
 
@@ -114,6 +115,10 @@ class RayBoxTester {
     return static_cast<unsigned>(_mm_movemask_ps(_mm_cmple_ps(tn, limit))) & 3u;
   }
 #endif
+
+  /// Host bytes from the tester's start that the two-child test reads (a
+  /// timing model may prefetch them before a step).
+  static constexpr size_t two_child_host_bytes() { return offsetof(RayBoxTester, tmin_); }
 
  private:
   // What the two-child test uses first (a search interleaved with many others

@@ -16,7 +16,8 @@ namespace vbsim::hw {
 
 namespace {
 
-// Event ids: slots 0 .. n-1, the source n (after the slots within a cycle).
+// Event ids: slots 0 .. n-1, the source n. Events of one cycle are handled in
+// the order they were scheduled (hw/event_wheel.h).
 constexpr uint32_t kMaxSlots = (1u << 24) - 2;
 
 /// The number of event ids for `cfg`: its slots and the source.
@@ -107,14 +108,18 @@ class Engine final : public CycleEngine {
     uint64_t trace_index = 0;  ///< the ray's position in the feed
     TraceRay tr;
     EmittedRay er;
-    /// Bytes from the slot's start that a step reads: up to the stepper's stack.
-    static constexpr size_t kHotBytes = 32 + sizeof(BvhStepper<Tester>) - BvhStepper<Tester>::stack_host_bytes();
+    /// Bytes from the slot's start that a node step reads: the header (core,
+    /// request) and the stepper up to its box tester (3 host lines). Leaf steps
+    /// read further; prefetching those lines for every step cost more than it
+    /// saved (docs/results/speed.md, round 9).
+    static constexpr size_t kNodeStepBytes = 16 + BvhStepper<Tester>::node_step_host_bytes();
   };
+  static_assert(offsetof(Slot, stepper) == 16, "the slot's header is 16 bytes");
 
-  /// Asks the host's caches for the part of `s` a step uses (not its stack).
+  /// Asks the host's caches for the part of `s` a node step uses.
   static void prefetch_slot(const Slot& s) {
     const char* p = reinterpret_cast<const char*>(&s);
-    for (size_t at = 0; at < Slot::kHotBytes; at += 64) __builtin_prefetch(p + at);
+    for (size_t at = 0; at < Slot::kNodeStepBytes; at += 64) __builtin_prefetch(p + at);
   }
 
   /// Slot `id`'s next step, s.pending, completes at cycle `at`.
@@ -213,6 +218,9 @@ class Engine final : public CycleEngine {
     const int core_index = static_cast<int>(s.core);
     switch (s.pending.kind) {
       case StepRequest::Node: {
+        // The box test below waits for the node record: ask for it before the
+        // memory model's work, so that the two overlap on the host.
+        __builtin_prefetch(&bvh_.nodes[s.pending.index]);
         const uint64_t ready = memory_.read(core_index, map_.node(s.pending.index), BvhAddressMap::kNodeBytes, now);
         ++counters_.node_fetches;
         counters_.memory_wait_cycles += ready - now;
