@@ -1,11 +1,16 @@
 // The tag array of one set-associative cache with least-recently-used
-// replacement. It only knows which lines are present: timing, fills in flight
-// and miss limits live in the memory hierarchy around it.
+// replacement. Each way holds a line and its fill cycle, the cycle at which the
+// line's data arrive: a cache that allocates a line when its miss is sent keeps
+// it here from then on, with a fill cycle that may lie ahead. It answers which
+// lines are present and when they filled; timing rules (merges, miss registers)
+// live in CacheLevel around it.
 //
 // Lines are numbered by `addr / line_bytes`; a line lives in set
 // `line % sets`. Storage is flat, no allocation after construction: a set is
-// its `ways` lines side by side, most recently used first (empty ways, kNoLine,
-// last), so a hit moves its line to the front and a fill evicts the last one.
+// its `ways` ways side by side (16 bytes each, a set starting on a 64-byte host
+// line, so a 4-way set is one host line), most recently used first (empty ways,
+// kNoLine, last), so a hit moves its line to the front and an install evicts
+// the last one that is not in flight.
 #pragma once
 #include <cstddef>
 #include <cstdint>
@@ -16,54 +21,65 @@ namespace vbsim::hw {
 class LruCache {
  public:
   static constexpr uint64_t kNoLine = ~uint64_t{0};
+  /// One way: a line and its fill cycle.
+  struct Way {
+    uint64_t line = kNoLine, fill = 0;
+  };
 
   /// `sets` >= 1 and `ways` >= 1 (make_memory validates the configuration).
   LruCache(uint32_t sets, uint32_t ways);
 
-  /// True when `line` is present; a hit makes it the most recently used of its set.
-  bool touch(uint64_t line) { return touch_in(set_of(line), line); }
+  /// True when `line` is present, its fill cycle into `fill`; a hit makes it
+  /// the most recently used of its set.
+  bool touch(uint64_t line, uint64_t& fill) { return touch_in(set_of(line), line, fill); }
   /// touch() of `line`, whose set (set_of(line)) the caller already knows.
   /// `Ways`, when not 0, is ways() known at compile time (the caller checked it).
   template <uint32_t Ways = 0>
-  bool touch_in(uint32_t set_index, uint64_t line) {
+  bool touch_in(uint32_t set_index, uint64_t line, uint64_t& fill) {
     const uint32_t ways = Ways ? Ways : ways_;
-    uint64_t* set = &lines_[static_cast<size_t>(set_index) * ways];
-    if (set[0] == line) return true;  // already the most recent: nothing moves
-    const uint32_t w = Ways ? find_in<Ways>(set, line) : find_way(set, line);
+    Way* set = set_at_index(set_index, ways);
+    if (set[0].line == line) {  // already the most recent: nothing moves
+      fill = set[0].fill;
+      return true;
+    }
+    const uint32_t w = Ways ? find_in<Ways>(set, line) : find_in(set, line, ways);
     if (w == ways) return false;
+    const Way hit = set[w];
     for (uint32_t i = w; i > 0; --i) set[i] = set[i - 1];  // the line becomes the most recent
-    set[0] = line;
+    set[0] = hit;
+    fill = hit.fill;
     return true;
   }
   /// True when `line` is present; changes nothing.
-  bool contains(uint64_t line) const { return find_way(set_at(line), line) != ways_; }
-  /// Puts `line` (not present) into its set as the most recently used line,
-  /// replacing an empty way or else the least recently used line. Returns the
-  /// line it replaced, or kNoLine.
-  uint64_t install(uint64_t line) { return install_in(set_of(line), line); }
+  bool contains(uint64_t line) const {
+    const Way* set = set_at_index(set_of(line), ways_);
+    return find_in(set, line, ways_) != ways_;
+  }
+  /// Puts `line` (not present) with fill cycle `fill` into its set at cycle
+  /// `now`, as the most recently used line. It replaces an empty way, else the
+  /// least recently used line whose fill is at or before `now` (a line still in
+  /// flight keeps its way), else, when every way is in flight, the least
+  /// recently used line. Returns the line it replaced, or kNoLine.
+  uint64_t install(uint64_t line, uint64_t fill, uint64_t now) { return install_in(set_of(line), line, fill, now); }
   /// install() of `line`, whose set (set_of(line)) the caller already knows;
   /// `Ways` as for touch_in.
   template <uint32_t Ways = 0>
-  uint64_t install_in(uint32_t set_index, uint64_t line) {
+  uint64_t install_in(uint32_t set_index, uint64_t line, uint64_t fill, uint64_t now) {
     const uint32_t ways = Ways ? Ways : ways_;
-    uint64_t* set = &lines_[static_cast<size_t>(set_index) * ways];
-    const uint64_t replaced = set[ways - 1];  // the least recent line, or an empty way
-    if constexpr (Ways != 0) {
-      age<Ways>(set);
-    } else {
-      switch (ways_) {  // every way moves one place down: unrolled for the usual associativities
-        case 4: age<4>(set); break;
-        case 8: age<8>(set); break;
-        case 16: age<16>(set); break;
-        default: age(set, ways_);
-      }
-    }
-    set[0] = line;
+    Way* set = set_at_index(set_index, ways);
+    // The usual case: the least recent way (an empty way has fill 0) is not in flight.
+    if (set[ways - 1].fill > now) return install_past_flight(set, ways, line, fill, now);
+    const uint64_t replaced = set[ways - 1].line;
+    for (uint32_t i = ways - 1; i > 0; --i) set[i] = set[i - 1];  // every way one place down
+    set[0] = {line, fill};
     return replaced;
   }
 
   /// Asks the host's caches for the set of `line` (no effect on any result).
-  void prefetch(uint64_t line) const { __builtin_prefetch(set_at(line)); }
+  void prefetch(uint64_t line) const {
+    const char* p = reinterpret_cast<const char*>(set_at_index(set_of(line), ways_));
+    for (uint32_t at = 0; at < set_host_bytes_; at += 64) __builtin_prefetch(p + at);
+  }
 
   uint32_t sets() const { return sets_; }
   uint32_t ways() const { return ways_; }
@@ -73,38 +89,41 @@ class LruCache {
   }
 
  private:
-  const uint64_t* set_at(uint64_t line) const { return &lines_[static_cast<size_t>(set_of(line)) * ways_]; }
-  /// Way of `line` in `set`, or ways_: every way is compared (no early exit, so
-  /// no branch depends on where the line is).
-  uint32_t find_way(const uint64_t* set, uint64_t line) const {
-    switch (ways_) {  // the usual associativities with their loops unrolled
-      case 4: return find_in<4>(set, line);
-      case 8: return find_in<8>(set, line);
-      case 16: return find_in<16>(set, line);
-      default: return find_in(set, line, ways_);
-    }
+  /// 64 bytes of ways: the storage unit, so that every set starts on a host line.
+  struct alignas(64) HostLine {
+    Way ways[64 / sizeof(Way)];
+  };
+  static constexpr uint32_t kWaysPerHostLine = 64 / sizeof(Way);
+
+  Way* set_at_index(uint32_t set_index, uint32_t ways) {
+    return storage_.data()->ways + static_cast<size_t>(set_index) * set_stride(ways);
   }
+  const Way* set_at_index(uint32_t set_index, uint32_t ways) const {
+    return storage_.data()->ways + static_cast<size_t>(set_index) * set_stride(ways);
+  }
+  /// Ways from one set's start to the next: whole host lines.
+  static size_t set_stride(uint32_t ways) {
+    return (ways + kWaysPerHostLine - 1) / kWaysPerHostLine * kWaysPerHostLine;
+  }
+  /// install_in() when the least recent way is in flight at `now` (kept out of line).
+  static uint64_t install_past_flight(Way* set, uint32_t ways, uint64_t line, uint64_t fill, uint64_t now);
+  /// Way of `line` in `set`, or `ways`: every way is compared (no early exit,
+  /// so no branch depends on where the line is); unrolled when `Ways` is known.
   template <uint32_t Ways>
-  static uint32_t find_in(const uint64_t* set, uint64_t line) {
+  static uint32_t find_in(const Way* set, uint64_t line) {
     return find_in(set, line, Ways);
   }
-  template <uint32_t Ways>
-  static void age(uint64_t* set) {
-    age(set, Ways);
-  }
-  static void age(uint64_t* set, uint32_t ways) {
-    for (uint32_t i = ways - 1; i > 0; --i) set[i] = set[i - 1];
-  }
-  static uint32_t find_in(const uint64_t* set, uint64_t line, uint32_t ways) {
+  static uint32_t find_in(const Way* set, uint64_t line, uint32_t ways) {
     uint32_t found = ways;
-    for (uint32_t w = ways; w-- > 0;) found = set[w] == line ? w : found;
+    for (uint32_t w = ways; w-- > 0;) found = set[w].line == line ? w : found;
     return found;
   }
 
   uint32_t sets_, ways_;
-  bool sets_pow2_;               // sets is a power of two (1 included): a set is line & set_mask_
-  uint64_t set_mask_;            // sets - 1
-  std::vector<uint64_t> lines_;  // sets * ways; per set in recency order, kNoLine when empty
+  bool sets_pow2_;                  // sets is a power of two (1 included): a set is line & set_mask_
+  uint64_t set_mask_;               // sets - 1
+  uint32_t set_host_bytes_;         // host bytes of one set (whole 64-byte lines)
+  std::vector<HostLine> storage_;   // sets * set_stride(ways) ways; per set in recency order
 };
 
 }  // namespace vbsim::hw

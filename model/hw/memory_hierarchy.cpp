@@ -45,7 +45,7 @@ __attribute__((always_inline)) inline uint64_t MemoryHierarchy::read_line(CacheL
   const CacheLevel::Access miss = l1.access<L1Ways>(line, now);
   if (miss.outcome != CacheLevel::Outcome::Miss) return miss.ready;
   const uint64_t fill = read_l2<L2Ways>(line, miss.start + l1.hit_latency());
-  l1.hold<L1Ways>(line, fill);
+  l1.fill<L1Ways>(line, fill, miss.start);
   return fill;
 }
 
@@ -54,7 +54,7 @@ __attribute__((always_inline)) inline uint64_t MemoryHierarchy::read_l2(uint64_t
   const CacheLevel::Access miss = l2_.access<L2Ways>(line, t);
   if (miss.outcome != CacheLevel::Outcome::Miss) return miss.ready;
   const uint64_t fill = dram_.read_line(miss.start + l2_.hit_latency());
-  l2_.hold<L2Ways>(line, fill);
+  l2_.fill<L2Ways>(line, fill, miss.start);
   return fill;
 }
 
@@ -72,11 +72,6 @@ uint64_t MemoryHierarchy::read_shaped(int core, uint64_t addr, uint32_t bytes, u
     throw std::out_of_range("memory: read by core " + std::to_string(core) + " of " +
                             std::to_string(l1_.size()));
   CacheLevel& l1 = l1_[static_cast<size_t>(core)];
-  // Every later lookup of this L1 happens at or after `now`, every later L2
-  // arrival at or after now + l1.hit_latency: fills up to there are final.
-  l1.retire(now);
-  l2_.retire(now + l1.hit_latency());
-
   const uint64_t first = addr >> line_shift_;
   const uint64_t last = (addr + (bytes ? bytes - 1 : 0)) >> line_shift_;
   uint64_t ready = read_line<L1Ways, L2Ways>(l1, first, now);  // a node read: its only line
@@ -88,7 +83,6 @@ uint64_t MemoryHierarchy::read_shaped(int core, uint64_t addr, uint32_t bytes, u
   if (ready > last_ready_) last_ready_ = ready;
   ++reads_;
   bytes_ += bytes;
-  line_requests_ += last - first + 1;
   return ready;
 }
 
@@ -96,7 +90,7 @@ nlohmann::json MemoryHierarchy::stats() const {
   LevelCounters l1_sum;
   nlohmann::json per_core = nlohmann::json::array();
   for (const CacheLevel& l1 : l1_) {
-    const LevelCounters& c = l1.counters();
+    const LevelCounters c = l1.counters();
     l1_sum.accesses += c.accesses;
     l1_sum.hits += c.hits;
     l1_sum.misses += c.misses;
@@ -114,7 +108,7 @@ nlohmann::json MemoryHierarchy::stats() const {
       {"model", "hierarchy"},
       {"reads", reads_},
       {"bytes", bytes_},
-      {"line_requests", line_requests_},
+      {"line_requests", l1_sum.accesses},  // every line a read spans is one L1 access
       {"span_cycles", span},
       {"l1", std::move(l1)},
       {"l2", level_json(l2_.counters())},

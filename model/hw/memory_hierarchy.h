@@ -56,7 +56,7 @@ class MemoryHierarchy final : public MemoryPort {
   std::vector<CacheLevel> l1_;  // one per core
   CacheLevel l2_;
   DramChannel dram_;
-  uint64_t reads_ = 0, bytes_ = 0, line_requests_ = 0;
+  uint64_t reads_ = 0, bytes_ = 0;
   uint64_t first_now_ = 0, last_ready_ = 0;
 };
 

@@ -1,5 +1,6 @@
 #include "hw/unit_pipelines.h"
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace vbsim::hw {
@@ -37,17 +38,21 @@ uint64_t UnitPipelines::issue_general(uint64_t ready) {
   return best;
 }
 
+void UnitPipelines::move_to(uint64_t block) {
+  const uint64_t left = std::min<uint64_t>(block - now_block_, words_per_pipe_);
+  for (uint32_t p = 0; p < count_; ++p)
+    for (uint64_t b = now_block_; b < now_block_ + left; ++b) ring_[size_t{p} * words_per_pipe_ + (b & word_mask_)] = 0;
+  now_block_ = block;
+}
+
 void UnitPipelines::grow(uint64_t block) {
   if (block < now_block_) throw std::logic_error("UnitPipelines: an operation ready before the current event");
   size_t words = words_per_pipe_;
   while (block - now_block_ >= words) words *= 2;
-  std::vector<Word> ring(count_ * words);
+  std::vector<uint64_t> ring(count_ * words, 0);
   for (uint32_t p = 0; p < count_; ++p)
-    for (size_t i = 0; i < words_per_pipe_; ++i) {
-      const Word& w = ring_[size_t{p} * words_per_pipe_ + i];
-      if (w.block == Word{}.block || w.block < now_block_) continue;  // empty, or cycles before the current event
-      ring[size_t{p} * words + (w.block & (words - 1))] = w;
-    }
+    for (uint64_t b = now_block_; b < now_block_ + words_per_pipe_; ++b)  // the blocks the ring holds
+      ring[size_t{p} * words + (b & (words - 1))] = ring_[size_t{p} * words_per_pipe_ + (b & word_mask_)];
   ring_.swap(ring);
   words_per_pipe_ = words;
   word_mask_ = words - 1;

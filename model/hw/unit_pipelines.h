@@ -16,11 +16,11 @@
 // the same cycle the one requested first wins.
 //
 // Each pipeline keeps a bit per cycle (set: an issue cycle taken) in a ring of
-// 64-cycle words, each word tagged with the block of 64 cycles it holds now: a
-// word whose tag is an earlier block holds only cycles before the current event,
-// which are never asked for again, so it reads as empty and is reused without
-// being cleared. The ring spans at least the cycles from the current event's
-// block on that reservations can reach; it grows when one falls beyond it.
+// 64-cycle words: the word at position (block mod ring size) holds block
+// `block` of 64 cycles, for the blocks from the current event's on. When the
+// current event moves past a block its word is cleared, ready for the block
+// one ring further on (cycles before the current event are never asked for
+// again). The ring grows when a reservation falls beyond it.
 // Operations and their waits are added to a UnitCounters the caller owns (the
 // engine sums every core's pipelines of one kind into one).
 #pragma once
@@ -42,7 +42,7 @@ class UnitPipelines {
   /// while handling the event at cycle `now`: `now` never decreases from one
   /// call to the next, and ready >= now.
   uint64_t issue(uint64_t ready, uint64_t now) {
-    now_block_ = now / kWordBits;
+    if (now / kWordBits != now_block_) move_to(now / kWordBits);
     const uint64_t at = count_ == 1 && interval_ == 1 ? issue_single(ready) : issue_general(ready);
     ++totals_->ops;
     totals_->wait_cycles += at - ready;
@@ -56,43 +56,27 @@ class UnitPipelines {
   /// One pipeline accepting an operation every cycle: the first clear bit at or after `ready`.
   uint64_t issue_single(uint64_t ready) {
     for (uint64_t from = ready;; from = (from / kWordBits + 1) * kWordBits) {  // then the next word's first cycle
-      const uint64_t block = from / kWordBits;
-      Word& w = word(0, block);
-      const uint64_t bits = w.bits & current_mask(w.block, block);
-      const uint64_t free_bits = ~bits >> (from % kWordBits);  // bit k: cycle from + k is free
-      if (free_bits == 0) continue;                             // the rest of the word is taken
+      uint64_t& w = word(0, from / kWordBits);
+      const uint64_t free_bits = ~w >> (from % kWordBits);  // bit k: cycle from + k is free
+      if (free_bits == 0) continue;                          // the rest of the word is taken
       const uint64_t at = from + static_cast<uint64_t>(__builtin_ctzll(free_bits));
-      w.bits = bits | uint64_t{1} << (at % kWordBits);
-      w.block = block;
+      w |= uint64_t{1} << (at % kWordBits);
       return at;
     }
   }
   uint64_t issue_general(uint64_t ready);
 
-  /// The 64 cycles of one block in one pipeline: a bit per cycle (set: taken),
-  /// valid while `block` is the block they belong to.
-  struct Word {
-    uint64_t bits = 0, block = ~uint64_t{0};
-  };
-  /// Pipeline `pipe`'s word for `block` (the ring spans it: grown when needed).
-  Word& word(uint32_t pipe, uint64_t block) {
+  /// Pipeline `pipe`'s word for `block`, a block from the current one on (the
+  /// ring spans it: grown when needed).
+  uint64_t& word(uint32_t pipe, uint64_t block) {
     if (block - now_block_ >= words_per_pipe_) grow(block);
     return ring_[size_t{pipe} * words_per_pipe_ + (block & word_mask_)];
   }
-  /// All ones when a word tagged `tag` holds `block`, else 0 (no branch: whether
-  /// a block was written before is as good as random to the host).
-  static uint64_t current_mask(uint64_t tag, uint64_t block) { return uint64_t{0} - uint64_t{tag == block}; }
-  bool taken(uint32_t pipe, uint64_t cycle) {
-    const uint64_t block = cycle / kWordBits;
-    const Word& w = word(pipe, block);
-    return ((w.bits & current_mask(w.block, block)) >> (cycle % kWordBits)) & 1u;
-  }
-  void take(uint32_t pipe, uint64_t cycle) {
-    const uint64_t block = cycle / kWordBits;
-    Word& w = word(pipe, block);
-    w.bits = (w.bits & current_mask(w.block, block)) | uint64_t{1} << (cycle % kWordBits);
-    w.block = block;
-  }
+  bool taken(uint32_t pipe, uint64_t cycle) { return (word(pipe, cycle / kWordBits) >> (cycle % kWordBits)) & 1u; }
+  void take(uint32_t pipe, uint64_t cycle) { word(pipe, cycle / kWordBits) |= uint64_t{1} << (cycle % kWordBits); }
+  /// The current event is in block `block` (> now_block_): clears the words of
+  /// the blocks it left.
+  void move_to(uint64_t block);
   /// Makes the ring span blocks now_block_ .. `block` (it holds no block before now_block_ that matters).
   void grow(uint64_t block);
 
@@ -100,7 +84,7 @@ class UnitPipelines {
   size_t words_per_pipe_;  // a power of two
   uint64_t word_mask_;     // words_per_pipe_ - 1
   uint64_t now_block_ = 0;  // the current event's block of 64 cycles
-  std::vector<Word> ring_;  // count_ rings of words_per_pipe_ words
+  std::vector<uint64_t> ring_;  // count_ rings of words_per_pipe_ words
   UnitCounters* totals_;
 };
 
