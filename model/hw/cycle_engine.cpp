@@ -77,7 +77,7 @@ class Engine final : public CycleEngine {
     uint64_t at;
     uint32_t id;
     while (!stopped_ && events_.take(limit, at, id)) {
-      const uint32_t next = events_.peek_same_cycle();
+      const uint32_t next = events_.peek_next();
       if (next < source_id_) prefetch_slot(slots_[next]);
       if (id == source_id_) source_ready(at);
       else step(id, at);

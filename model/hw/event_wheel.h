@@ -58,9 +58,15 @@ class EventWheel {
     return ring < over ? ring : over;
   }
 
-  /// Id of the event take() hands out next if it is in the cycle being handed
-  /// out and already scheduled, else kNone (lets the caller prefetch its state).
-  uint32_t peek_same_cycle() const { return next_; }
+  /// A hint that lets the caller prefetch state: the id take() hands out next as
+  /// far as is known now - the next of the cycle being handed out, else the first
+  /// of the next cycle's bucket - or kNone. (An event scheduled for the current
+  /// cycle meanwhile would come first.)
+  uint32_t peek_next() const {
+    if (next_ != kNone) return next_;
+    const size_t b = static_cast<size_t>((base_ + 1) & mask_);
+    return (occupied_[b >> 6] >> (b & 63)) & 1u ? link_[head_cell(b)] : kNone;
+  }
 
   /// Takes the next event if its cycle is before `limit`: its id into `id`,
   /// its cycle into `at`. False (and nothing taken) otherwise.

@@ -65,7 +65,7 @@ TEST_CASE("events of one cycle come out in the order they were scheduled, not by
   CHECK((at == 3 && id == 2));
   REQUIRE(w.take(100, at, id));
   CHECK((at == 5 && id == 6));
-  CHECK(w.peek_same_cycle() == 1);
+  CHECK(w.peek_next() == 1);
   w.schedule(5, 6);  // scheduled while cycle 5 is handed out: after the ones already there
   w.schedule(40, 7);  // still beyond the window from cycle 5: after 3 and 0
   CHECK(take_all(w, 6) == std::vector<Taken>{{5, 1}, {5, 4}, {5, 6}});
@@ -81,11 +81,27 @@ TEST_CASE("an event scheduled for the current cycle after its last one was taken
   uint64_t at = 0;
   uint32_t id = 0;
   REQUIRE(w.take(10, at, id));
-  CHECK(w.peek_same_cycle() == EventWheel::kNone);
+  CHECK(w.peek_next() == EventWheel::kNone);  // nothing at cycle 2 or 3
   w.schedule(2, 3);  // the same id again, same cycle
   w.schedule(2, 1);
   w.schedule(9, 0);
   CHECK(take_all(w) == std::vector<Taken>{{2, 3}, {2, 1}, {9, 0}});
+}
+
+TEST_CASE("the wheel's hint names the next cycle's first event when the current cycle is used up", "[wheel]") {
+  EventWheel w(6, 4);
+  w.schedule(4, 5);
+  w.schedule(5, 2);
+  w.schedule(5, 0);
+  uint64_t at = 0;
+  uint32_t id = 0;
+  REQUIRE(w.take(10, at, id));
+  CHECK((at == 4 && id == 5));
+  CHECK(w.peek_next() == 2);  // cycle 4 is used up; cycle 5 starts with 2
+  REQUIRE(w.take(10, at, id));
+  CHECK(w.peek_next() == 0);
+  REQUIRE(w.take(10, at, id));
+  CHECK(w.peek_next() == EventWheel::kNone);
 }
 
 TEST_CASE("the wheel hands out events in the plain model's order on random streams", "[wheel]") {
