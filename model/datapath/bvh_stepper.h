@@ -21,6 +21,7 @@
 // spilled entries, one read (counted in refills()). The logical stack, and so
 // the traversal order, is unchanged; only the timing pays for the overflow.
 #pragma once
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 
@@ -144,11 +145,9 @@ class BvhStepper {
   /// model may prefetch the stepper's other members before a step).
   static constexpr size_t stack_host_bytes() { return sizeof(Entry) * (kTraversalStackDepth + 1); }
   /// Host bytes from the stepper's start that node_step() reads (pop() reads
-  /// its stack too): the scalars, 44 bytes padded to the box tester's
-  /// alignment, then the box tester's two-child state.
+  /// its stack too): the scalars, then the box tester's two-child state.
   static constexpr size_t node_step_host_bytes() {
-    constexpr size_t align = alignof(std::optional<RayBoxTester>);
-    return (44 + align - 1) / align * align + RayBoxTester::two_child_host_bytes();
+    return offsetof(BvhStepper, box_) + RayBoxTester::two_child_host_bytes();
   }
 
  private:

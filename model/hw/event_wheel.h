@@ -40,7 +40,7 @@ class EventWheel {
   __attribute__((always_inline)) void schedule(uint64_t at, uint32_t id) {
     ++pending_;
     link_[id] = kNone;
-    if (in_batch_ && at == base_) {  // joins the end of the cycle being handed out
+    if (at == base_) {  // joins the end of the cycle being handed out (its bucket stays empty)
       if (next_ == kNone) next_ = id;
       else link_[batch_tail_] = id;
       batch_tail_ = id;
@@ -52,7 +52,7 @@ class EventWheel {
 
   /// Cycle of the next event; the wheel is not empty.
   uint64_t next_cycle() const {
-    if (in_batch_ && next_ != kNone) return base_;
+    if (next_ != kNone) return base_;
     const uint64_t ring = pending_ > overflow_.size() ? base_ + distance_to_next_bucket() : ~uint64_t{0};
     const uint64_t over = overflow_.empty() ? ~uint64_t{0} : overflow_.front().at;
     return ring < over ? ring : over;
@@ -71,7 +71,7 @@ class EventWheel {
   /// Takes the next event if its cycle is before `limit`: its id into `id`,
   /// its cycle into `at`. False (and nothing taken) otherwise.
   bool take(uint64_t limit, uint64_t& at, uint32_t& id) {
-    if (!(in_batch_ && next_ != kNone) && !open_next(limit)) return false;
+    if (next_ == kNone && !open_next(limit)) return false;
     if (base_ >= limit) return false;
     at = base_;
     id = next_;
@@ -94,7 +94,6 @@ class EventWheel {
   /// The current cycle is used up: opens the next one if it is before `limit`
   /// (kept out of line so that take(), called once per event, stays small).
   __attribute__((noinline)) bool open_next(uint64_t limit) {
-    in_batch_ = false;
     if (pending_ == 0) return false;
     const uint64_t next = next_cycle();
     if (next >= limit) return false;
@@ -146,7 +145,6 @@ class EventWheel {
     batch_tail_ = tail_[b];
     tail_[b] = head_cell(b);  // the bucket is empty again (its head cell is rewritten by the next put)
     occupied_[b >> 6] &= ~(uint64_t{1} << (b & 63));
-    in_batch_ = true;
   }
 
   uint32_t ids_;
@@ -157,7 +155,6 @@ class EventWheel {
   std::vector<uint32_t> link_;      // per id: the next id in its list; then one head cell per bucket
   uint32_t next_ = kNone;           // the next id of the cycle being handed out, or kNone
   uint32_t batch_tail_ = kNone;     // the last id of the cycle being handed out
-  bool in_batch_ = false;
   std::vector<Far> overflow_;       // a min-heap by (cycle, scheduling order)
   uint64_t far_order_ = 0;
   uint64_t pending_ = 0;

@@ -7,7 +7,6 @@ LruCache::LruCache(uint32_t sets, uint32_t ways)
       ways_(ways),
       sets_pow2_((sets & (sets - 1)) == 0),
       set_mask_(sets - 1),
-      set_host_bytes_(static_cast<uint32_t>(set_stride(ways) * sizeof(Way))),
       storage_(static_cast<size_t>(sets) * set_stride(ways) / kWaysPerHostLine) {}
 
 uint64_t LruCache::install_past_flight(Way* set, uint32_t ways, uint64_t line, uint64_t fill, uint64_t now) {

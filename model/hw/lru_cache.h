@@ -33,7 +33,7 @@ class LruCache {
   /// the most recently used of its set.
   bool touch(uint64_t line, uint64_t& fill) { return touch_in(set_of(line), line, fill); }
   /// touch() of `line`, whose set (set_of(line)) the caller already knows.
-  /// `Ways`, when not 0, is ways() known at compile time (the caller checked it).
+  /// `Ways`, when not 0, is the associativity known at compile time (the caller checked it).
   template <uint32_t Ways = 0>
   bool touch_in(uint32_t set_index, uint64_t line, uint64_t& fill) {
     const uint32_t ways = Ways ? Ways : ways_;
@@ -78,11 +78,9 @@ class LruCache {
   /// Asks the host's caches for the set of `line` (no effect on any result).
   void prefetch(uint64_t line) const {
     const char* p = reinterpret_cast<const char*>(set_at_index(set_of(line), ways_));
-    for (uint32_t at = 0; at < set_host_bytes_; at += 64) __builtin_prefetch(p + at);
+    for (size_t at = 0; at < set_stride(ways_) * sizeof(Way); at += 64) __builtin_prefetch(p + at);
   }
 
-  uint32_t sets() const { return sets_; }
-  uint32_t ways() const { return ways_; }
   /// The set `line` lives in.
   uint32_t set_of(uint64_t line) const {
     return static_cast<uint32_t>(sets_pow2_ ? (line & set_mask_) : line % sets_);
@@ -122,7 +120,6 @@ class LruCache {
   uint32_t sets_, ways_;
   bool sets_pow2_;                  // sets is a power of two (1 included): a set is line & set_mask_
   uint64_t set_mask_;               // sets - 1
-  uint32_t set_host_bytes_;         // host bytes of one set (whole 64-byte lines)
   std::vector<HostLine> storage_;   // sets * set_stride(ways) ways; per set in recency order
 };
 
