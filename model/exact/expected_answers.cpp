@@ -1,26 +1,28 @@
 #include "exact/expected_answers.h"
 
+#include <algorithm>
+
 namespace vbsim {
 
 ParentRays collect_parent_rays(const std::vector<TraceRay>& rays) {
   ParentRays parents;
   parents.reserve(rays.size());
-  for (const TraceRay& r : rays) parents.emplace(r.id, std::make_pair(r.o, r.d));
+  for (const TraceRay& r : rays) parents.emplace(r.id, ParentRay{r.o, r.d});
   return parents;
 }
 
 OracleAnswer ExpectationFiller::fill(TraceRay& r) {
-  OracleAnswer a = oracle_.answer(intended_ray(r, scene_, &parents_));
+  OracleAnswer a = oracle_.answer(intended_ray(r, scene_, parents_.lookup(r.parent)));
   r.has_expect = true;
   r.expect_prim = a.prim;
   r.has_expect_t = a.prim >= 0;
   r.expect_t = a.prim >= 0 ? a.t : 0.0;
-  parents_[r.id] = {r.o, r.d};
+  parents_.add(r.id, r.o, r.d);
   return a;
 }
 
 void fill_expect(std::vector<TraceRay>& rays, const Scene& scene, const Bvh& bvh) {
-  ExpectationFiller filler(scene, bvh);
+  ExpectationFiller filler(scene, bvh, std::max<int64_t>(1, static_cast<int64_t>(rays.size())));
   for (TraceRay& r : rays) filler.fill(r);
 }
 

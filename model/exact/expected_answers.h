@@ -12,22 +12,26 @@ namespace vbsim {
 /// id -> (o, d) of every ray, the parents intended_ray looks up.
 ParentRays collect_parent_rays(const std::vector<TraceRay>& rays);
 
-/// Streams a trace through the oracle, one ray at a time, in trace order.
+/// Streams a trace through the oracle, one ray at a time, in trace order,
+/// keeping the last `parent_window` rays as parents (ParentRayStore).
 class ExpectationFiller {
  public:
-  ExpectationFiller(const Scene& scene, const Bvh& bvh) : scene_(scene), oracle_(scene, bvh) {}
+  ExpectationFiller(const Scene& scene, const Bvh& bvh,
+                    int64_t parent_window = ParentRayStore::kDefaultWindow)
+      : scene_(scene), oracle_(scene, bvh), parents_(parent_window) {}
   /// Sets has_expect, expect_prim and (for hits) has_expect_t / expect_t, the
   /// exact t rounded to nearest double; a miss gets expect_prim = -1 and no t.
-  /// Returns the answer; remembers the ray as a parent for later rays.
+  /// Returns the answer; remembers the ray as a parent for later rays. Throws
+  /// ParentWindowError when the ray's parent lies beyond the window.
   OracleAnswer fill(TraceRay& ray);
 
  private:
   const Scene& scene_;
   Oracle oracle_;
-  ParentRays parents_;
+  ParentRayStore parents_;
 };
 
-/// ExpectationFiller over a whole vector of rays.
+/// ExpectationFiller over a whole vector of rays (every ray kept as a parent).
 void fill_expect(std::vector<TraceRay>& rays, const Scene& scene, const Bvh& bvh);
 
 }  // namespace vbsim

@@ -8,7 +8,7 @@
 
 namespace vbsim {
 
-ExactRay intended_ray(const TraceRay& ray, const Scene& scene, const ParentRays* parents) {
+ExactRay intended_ray(const TraceRay& ray, const Scene& scene, const ParentRay* parent) {
   ExactRay out;
   out.d = to_exact(ray.d);
   if (std::isnan(ray.tmax))
@@ -31,11 +31,7 @@ ExactRay intended_ray(const TraceRay& ray, const Scene& scene, const ParentRays*
                             std::to_string(scene.size()) + " triangles)");
   const Triangle& tri = scene.triangles[static_cast<size_t>(ray.parent_prim)];
   // 1. Where the parent ray, as given in the trace, meets the parent triangle's plane.
-  if (parents) {
-    const auto it = parents->find(ray.parent);
-    if (it != parents->end() && exact_plane_point(it->second.first, it->second.second, tri, out.o))
-      return out;
-  }
+  if (parent && exact_plane_point(parent->o, parent->d, tri, out.o)) return out;
   // 2. The barycentric point at parent_uv.
   if (ray.has_parent_uv) {
     out.o = exact_barycentric_point(tri, ray.parent_u, ray.parent_v);

@@ -8,7 +8,7 @@
 #include "exact/exact_geometry.h"
 #include "scene/bvh.h"
 #include "scene/scene.h"
-#include "trace/parent_rays.h"
+#include "trace/parent_ray_store.h"
 #include "trace/trace_record.h"
 
 namespace vbsim {
@@ -21,8 +21,9 @@ struct OracleAnswer {
 
 
 /// Intended ray of a trace ray (spec "The exact answer", step 1 and 2).
-/// `parents` may be null (then parent_uv, then projection of o is used).
-ExactRay intended_ray(const TraceRay& ray, const Scene& scene, const ParentRays* parents);
+/// `parent`: the ray `ray.parent` when the trace gave it before `ray`, else
+/// null (then parent_uv, then the projection of o is used).
+ExactRay intended_ray(const TraceRay& ray, const Scene& scene, const ParentRay* parent);
 
 class Oracle {
  public:

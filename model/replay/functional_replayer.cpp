@@ -7,7 +7,7 @@
 namespace vbsim {
 
 RayOutcome conclude_ray(const TraceRay& tr, const EmittedRay& er, const Hit& hit, uint64_t rejected,
-                        const Scene& scene, const ParentRays* parents, KindStats& ks) {
+                        const Scene& scene, KindStats& ks) {
   RayOutcome out;
   out.hit = hit;
   out.rejected = rejected;
@@ -22,7 +22,7 @@ RayOutcome conclude_ray(const TraceRay& tr, const EmittedRay& er, const Hit& hit
   if (tr.has_expect) {
     out.scored = true;
     if (verdict_needs_exact(tr, out.answer)) {  // rational numbers only when needed
-      const ExactRay intended = intended_ray(tr, scene, parents);
+      const ExactRay intended = intended_ray(tr, scene, er.parent ? &*er.parent : nullptr);
       out.verdict = judge(tr, out.answer, scene, &intended);
     } else {
       out.verdict = judge(tr, out.answer, scene, nullptr);
@@ -34,8 +34,8 @@ RayOutcome conclude_ray(const TraceRay& tr, const EmittedRay& er, const Hit& hit
 
 RayOutcome replay_one_ray(const TraceRay& tr, const Scene& scene, const Bvh& bvh,
                           const ReplayOptions& opt, const CandidateFilter& filter,
-                          const ParentRays* parents, KindStats& ks) {
-  const EmittedRay er = emit_ray(tr, scene, opt, parents);
+                          const ParentRay* parent, KindStats& ks) {
+  const EmittedRay er = emit_ray(tr, scene, opt, parent);
   const bool any_hit = search_stops_at_any_hit(opt, tr, er);
   const uint64_t rejected_before = ks.candidates.rejected;
   Hit hit;
@@ -50,32 +50,31 @@ RayOutcome replay_one_ray(const TraceRay& tr, const Scene& scene, const Bvh& bvh
       hit = closest_hit<PbrtWatertightTester>(bvh, er.ray, filter, ks.candidates, ks.traversal, any_hit);
       break;
   }
-  return conclude_ray(tr, er, hit, ks.candidates.rejected - rejected_before, scene, parents, ks);
+  return conclude_ray(tr, er, hit, ks.candidates.rejected - rejected_before, scene, ks);
 }
 
 FunctionalReplayer::FunctionalReplayer(const Scene& scene, const Bvh& bvh, const ReplayOptions& options)
-    : scene_(scene), bvh_(bvh), opt_(options), filter_(options.method) {
+    : scene_(scene), bvh_(bvh), opt_(options), filter_(options.method), parents_(options.parent_window) {
   check_traversal_depth(bvh);
 }
 
 RayOutcome FunctionalReplayer::replay(const TraceRay& tr) {
   KindStats& ks = stats_.by_kind[static_cast<int>(tr.kind)];
-  const RayOutcome out =
-      replay_one_ray(tr, scene_, bvh_, opt_, filter_, track_parents_ ? &parents_ : nullptr, ks);
-  if (track_parents_) parents_[tr.id] = {tr.o, tr.d};
+  const ParentRay* parent = track_parents_ ? parents_.lookup(tr.parent) : nullptr;
+  const RayOutcome out = replay_one_ray(tr, scene_, bvh_, opt_, filter_, parent, ks);
+  if (track_parents_) parents_.add(tr.id, tr.o, tr.d);
   return out;
 }
 
 EmittedRay FunctionalReplayer::emit(const TraceRay& tr) {
-  const EmittedRay er = emit_ray(tr, scene_, opt_, track_parents_ ? &parents_ : nullptr);
-  if (track_parents_) parents_[tr.id] = {tr.o, tr.d};
+  const EmittedRay er = emit_ray(tr, scene_, opt_, track_parents_ ? parents_.lookup(tr.parent) : nullptr);
+  if (track_parents_) parents_.add(tr.id, tr.o, tr.d);
   return er;
 }
 
 RayOutcome FunctionalReplayer::conclude(const TraceRay& tr, const EmittedRay& er, const Hit& hit,
                                         uint64_t rejected) {
-  return conclude_ray(tr, er, hit, rejected, scene_, track_parents_ ? &parents_ : nullptr,
-                      stats_.by_kind[static_cast<int>(tr.kind)]);
+  return conclude_ray(tr, er, hit, rejected, scene_, stats_.by_kind[static_cast<int>(tr.kind)]);
 }
 
 }  // namespace vbsim

@@ -2,10 +2,11 @@
 // order: emission -> closest-hit search with the candidate filter -> verdict ->
 // statistics. The same datapath the cycle-level model times.
 //
-// Memory: it keeps (o, d) of every ray it has seen (24 bytes plus hash-map
-// overhead per ray) so that children can find their parent ray for intended
-// origins and ray-equation hit points; a parent must precede its children in the
-// trace to be found. Nothing else grows with the trace.
+// Memory: it keeps (o, d) of the last ReplayOptions::parent_window rays
+// (ParentRayStore, about 40 bytes a ray) so that children can find their parent
+// ray for intended origins and ray-equation hit points; a parent must precede
+// its children in the trace, by at most that window, to be found. Nothing
+// grows with the trace.
 #pragma once
 #include <cstdint>
 
@@ -37,19 +38,19 @@ inline bool search_stops_at_any_hit(const ReplayOptions& opt, const TraceRay& tr
 }
 
 /// The outcome of a search that returned `hit` with `rejected` rejected
-/// candidates for `tr` (emitted as `er`): the method's answer and its verdict,
-/// counted into `ks`. `parents` (may be null) as for replay_one_ray.
+/// candidates for `tr` (emitted as `er`, whose `parent` gives the intended
+/// origin): the method's answer and its verdict, counted into `ks`.
 RayOutcome conclude_ray(const TraceRay& tr, const EmittedRay& er, const Hit& hit, uint64_t rejected,
-                        const Scene& scene, const ParentRays* parents, KindStats& ks);
+                        const Scene& scene, KindStats& ks);
 
 /// One ray through emission, the closest-hit search with `filter` (built from
-/// opt.method) and the verdict, counted into `ks`. `parents` (may be null) holds
-/// the rays seen before, for intended origins and ray-equation hit points.
-/// Depends on nothing but its arguments: the same ray and options give the same
-/// outcome whatever was replayed before.
+/// opt.method) and the verdict, counted into `ks`. `parent` (may be null): the
+/// ray `tr.parent` when it came before `tr`, for intended origins and
+/// ray-equation hit points. Depends on nothing but its arguments: the same ray
+/// and options give the same outcome whatever was replayed before.
 RayOutcome replay_one_ray(const TraceRay& tr, const Scene& scene, const Bvh& bvh,
                           const ReplayOptions& opt, const CandidateFilter& filter,
-                          const ParentRays* parents, KindStats& ks);
+                          const ParentRay* parent, KindStats& ks);
 
 class FunctionalReplayer {
  public:
@@ -58,11 +59,14 @@ class FunctionalReplayer {
 
   /// Replays one ray and adds it to the statistics. Precondition: the ray's
   /// triangle indices are in range for the scene (the trace readers check this).
+  /// Throws ParentWindowError (before counting the ray) when its parent lies
+  /// beyond the parent window.
   RayOutcome replay(const TraceRay& tr);
 
   // The three parts of replay(), for a timing model that runs the search
-  // itself (hw/cycle_engine): emit() before the search (it also records the
-  // ray as a possible parent), conclude() after it with the search's result.
+  // itself (hw/cycle_engine): emit() before the search (it looks the parent
+  // up, throwing ParentWindowError as replay() does, and records the ray as a
+  // possible parent), conclude() after it with the search's result.
   // Each ray must go through both, in trace order for emit().
   EmittedRay emit(const TraceRay& tr);
   /// Whether the search of `tr` (emitted as `er`) stops at the first accepted hit.
@@ -85,7 +89,7 @@ class FunctionalReplayer {
   const Bvh& bvh_;
   ReplayOptions opt_;
   CandidateFilter filter_;
-  ParentRays parents_;
+  ParentRayStore parents_;
   bool track_parents_ = true;
   ReplayStats stats_;
 };

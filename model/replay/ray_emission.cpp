@@ -27,13 +27,10 @@ float scene_exit_t(const Scene& scene, Vec3f o, Vec3f d) {
 
 /// Start point of the child before any method acts, per the hit-point mode.
 Vec3f base_origin(const TraceRay& tr, const Scene& scene, HitPointMode mode,
-                  const ParentRays* parents, bool& fallback) {
+                  const ParentRay* parent, bool& fallback) {
   if (mode == HitPointMode::Given || tr.parent_prim < 0) return tr.o;
   if (mode == HitPointMode::Ray) {
-    if (tr.has_parent_t && parents) {
-      const auto it = parents->find(tr.parent);
-      if (it != parents->end()) return hit_point_ray(it->second.first, it->second.second, tr.parent_t);
-    }
+    if (tr.has_parent_t && parent) return hit_point_ray(parent->o, parent->d, tr.parent_t);
   } else if (tr.has_parent_uv) {
     return hit_point_barycentric(scene.triangles[tr.parent_prim], tr.parent_u, tr.parent_v);
   }
@@ -73,7 +70,7 @@ uint8_t parent_sign_bit(const TraceRay& tr, const Scene& scene) {
 }
 
 EmittedRay emit_ray(const TraceRay& tr, const Scene& scene, const ReplayOptions& opt,
-                    const ParentRays* parents) {
+                    const ParentRay* parent) {
   const SelfIntersectionMethod& m = opt.method;
   EmittedRay out;
   Ray& r = out.ray;
@@ -83,7 +80,8 @@ EmittedRay emit_ray(const TraceRay& tr, const Scene& scene, const ReplayOptions&
   r.kind = tr.kind;
   r.parent_prim = tr.parent_prim;
   r.sign = parent_sign_bit(tr, scene);
-  Vec3f p = base_origin(tr, scene, opt.hit_point, parents, out.emission_fallback);
+  if (parent) out.parent = *parent;
+  Vec3f p = base_origin(tr, scene, opt.hit_point, parent, out.emission_fallback);
 
   if (tr.parent_prim >= 0) {
     const Triangle& tri = scene.triangles[tr.parent_prim];

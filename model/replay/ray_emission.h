@@ -4,11 +4,12 @@
 // tmin, reverse shadow) and the parent sign bit (computed when the trace omits it).
 #pragma once
 #include <cstdint>
+#include <optional>
 
 #include "datapath/ray.h"
 #include "replay/replay_options.h"
 #include "scene/scene.h"
-#include "trace/parent_rays.h"
+#include "trace/parent_ray_store.h"
 #include "trace/trace_record.h"
 
 namespace vbsim {
@@ -17,14 +18,18 @@ struct EmittedRay {
   Ray ray;
   bool reversed = false;        ///< reverse-shadow: traced from the light back
   bool emission_fallback = false;  ///< a step needed parent data the ray lacks and was skipped
+  /// The parent ray emission was given (absent: not in the trace before this
+  /// ray); the verdict's intended origin uses it again after the search.
+  std::optional<ParentRay> parent;
 };
 
 /// Parent sign bit of the trace spec: the given `sign`, else dot(d, Ng(parent_prim)) < 0
 /// (0 for a camera ray). Precondition: parent_prim is in range.
 uint8_t parent_sign_bit(const TraceRay& tr, const Scene& scene);
 
-/// The ray the accelerator receives for `tr` under `opt`. `parents` may be null.
+/// The ray the accelerator receives for `tr` under `opt`. `parent`: the ray
+/// `tr.parent` when the trace gave it before `tr`, else null.
 EmittedRay emit_ray(const TraceRay& tr, const Scene& scene, const ReplayOptions& opt,
-                    const ParentRays* parents);
+                    const ParentRay* parent);
 
 }  // namespace vbsim

@@ -4,6 +4,7 @@
 
 #include "datapath/self_intersection_method.h"
 #include "datapath/testers.h"
+#include "trace/parent_ray_store.h"
 
 namespace vbsim {
 
@@ -19,6 +20,10 @@ struct ReplayOptions {
   TesterKind tester = TesterKind::ThreeHalfPlane;
   HitPointMode hit_point = HitPointMode::Given;
   bool any_hit_for_shadow = true;  ///< shadow rays stop at the first accepted hit
+  /// Rays kept for children to look their parent up in (ParentRayStore): a
+  /// resource limit, not part of the echoed configuration; a parent further
+  /// back is an error, never a silently different answer.
+  int64_t parent_window = ParentRayStore::kDefaultWindow;
 };
 
 }  // namespace vbsim

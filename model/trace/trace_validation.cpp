@@ -71,8 +71,13 @@ bool check_trace_ray(const TraceRay& ray, int32_t triangle_count, TraceFieldProb
 }
 
 bool TraceIdSet::insert(int64_t id) {
-  if (id < dense_end_) return false;
-  if (id > dense_end_) return sparse_.insert(id).second;
+  if (dense_end_ < 0) {  // the first id starts the dense run
+    dense_begin_ = id;
+    dense_end_ = id + 1;
+    return true;
+  }
+  if (id >= dense_begin_ && id < dense_end_) return false;
+  if (id != dense_end_) return sparse_.insert(id).second;
   ++dense_end_;
   while (!sparse_.empty() && sparse_.erase(dense_end_) == 1) ++dense_end_;
   return true;

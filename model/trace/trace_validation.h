@@ -17,16 +17,21 @@ namespace vbsim {
 /// expect.t only with a hit in expect. On failure fills `problem`, returns false.
 bool check_trace_ray(const TraceRay& ray, int32_t triangle_count, TraceFieldProblem& problem);
 
-/// The ids seen so far, to reject duplicates. Ids arriving in order 0, 1, 2, ...
-/// cost no memory; others go to a hash set (O(rays) ints at worst).
+/// The ids seen so far, to reject duplicates. Ids arriving in order k, k+1,
+/// k+2, ... from any first id k cost no memory (one dense run); others go to a
+/// hash set (O(rays) ints at worst) until the run reaches them.
 class TraceIdSet {
  public:
   /// Adds `id` (>= 0); false when it was already present.
   bool insert(int64_t id);
+  /// Whether `id` has been added.
+  bool contains(int64_t id) const {
+    return (id >= dense_begin_ && id < dense_end_) || sparse_.count(id) != 0;
+  }
 
  private:
-  int64_t dense_end_ = 0;  ///< every id in [0, dense_end_) has been seen
-  std::unordered_set<int64_t> sparse_;  ///< seen ids >= dense_end_
+  int64_t dense_begin_ = -1, dense_end_ = -1;  ///< every id in [begin, end) has been seen; -1: none yet
+  std::unordered_set<int64_t> sparse_;  ///< seen ids outside [begin, end)
 };
 
 /// check_trace_ray plus the duplicate-id rule, over a stream of rays.

@@ -103,7 +103,7 @@ TEST_CASE("stepper gives closest_hit's hit on every ray of the bundled trace", "
   Totals t;
   TraceRay tr;
   while (src->next(tr)) {
-    const EmittedRay er = emit_ray(tr, sb.scene, opt, &parents);
+    const EmittedRay er = emit_ray(tr, sb.scene, opt, find_parent(parents, tr.parent));
     parents[tr.id] = {tr.o, tr.d};
     INFO(method << " depth " << depth << " ray " << tr.id);
     check_ray(sb.bvh, filter, stepper, er.ray, tr.kind == RayKind::Shadow, t);

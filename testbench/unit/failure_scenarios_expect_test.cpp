@@ -36,7 +36,7 @@ void check_case(const ScenarioCase& c) {
       CHECK(r.sign >= 0);
     }
     if (i % 3 != 0) continue;  // a sample: every third ray
-    const ExactRay intended = intended_ray(r, scene, &parents);
+    const ExactRay intended = intended_ray(r, scene, find_parent(parents, r.parent));
     const test::ReferenceClosest ref = test::reference_closest(scene, intended);
     if (ref.ties.empty()) {
       CHECK(r.expect_prim == -1);

@@ -145,12 +145,12 @@ TEST_CASE("intended_ray: parent plane point, then parent_uv, then projection", "
   REQUIRE(plane_offset(to_exact(child.o), parent) != 0);
 
   SECTION("camera rays keep o") {
-    const ExactRay r = intended_ray(cam, scene, &parents);
+    const ExactRay r = intended_ray(cam, scene, find_parent(parents, cam.parent));
     CHECK(r.o.x == to_exact(cam.o).x);
     CHECK_FALSE(r.has_tmax);
   }
   SECTION("the parent ray's exact plane point, on the plane in rationals") {
-    const ExactRay r = intended_ray(child, scene, &parents);
+    const ExactRay r = intended_ray(child, scene, find_parent(parents, child.parent));
     CHECK(plane_offset(r.o, parent) == 0);
     CHECK(r.o.x == hit_point.x);
     CHECK(r.o.y == hit_point.y);
@@ -168,7 +168,7 @@ TEST_CASE("intended_ray: parent plane point, then parent_uv, then projection", "
     for (const ParentRays* p : {static_cast<const ParentRays*>(nullptr), &parents}) {
       ParentRays parallel;
       parallel[7] = {cam.o, parent.v1 - parent.v0};  // in-plane direction
-      const ExactRay r = intended_ray(child, scene, p ? &parallel : nullptr);
+      const ExactRay r = intended_ray(child, scene, p ? find_parent(parallel, child.parent) : nullptr);
       CHECK(r.o.x == expect.x);
       CHECK(r.o.z == expect.z);
       CHECK(plane_offset(r.o, parent) == 0);
@@ -186,7 +186,7 @@ TEST_CASE("intended_ray: parent plane point, then parent_uv, then projection", "
   }
   SECTION("a parent_prim out of range is an error naming the ray") {
     child.parent_prim = 2;
-    CHECK_THROWS_WITH(intended_ray(child, scene, &parents), Catch::Contains("ray 8"));
+    CHECK_THROWS_WITH(intended_ray(child, scene, find_parent(parents, child.parent)), Catch::Contains("ray 8"));
   }
 }
 
@@ -311,7 +311,7 @@ TEST_CASE("filtered BVH traversal equals brute-force rationals on random scenes"
       if (c.d == Vec3f{}) c.d = {1, 0, 0};
       trace.push_back(c);
       const ParentRays parents = collect_parent_rays(trace);
-      const ExactRay cr = intended_ray(c, s, &parents);
+      const ExactRay cr = intended_ray(c, s, find_parent(parents, c.parent));
       REQUIRE(plane_offset(cr.o, s.triangles[static_cast<size_t>(a.prim)]) == 0);
       const std::vector<int32_t> child_ties = o.ties(cr);
       // The intended origin is on the parent's plane: the parent is never re-hit.

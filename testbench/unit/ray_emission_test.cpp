@@ -49,13 +49,13 @@ TEST_CASE("hit-point modes recompute the origin from the parent's data", "[emiss
   tr.parent_u = 0.25f;
   tr.parent_v = 0.5f;  // (1-u-v) v0 + u v1 + v v2 = (1, 2, 0)
   ReplayOptions opt;
-  CHECK(emit_ray(tr, scene, opt, &parents).ray.o == Vec3f{9, 9, 9});  // given
+  CHECK(emit_ray(tr, scene, opt, find_parent(parents, tr.parent)).ray.o == Vec3f{9, 9, 9});  // given
   opt.hit_point = HitPointMode::Ray;
-  EmittedRay er = emit_ray(tr, scene, opt, &parents);
+  EmittedRay er = emit_ray(tr, scene, opt, find_parent(parents, tr.parent));
   CHECK(er.ray.o == Vec3f{2.25f, 1.625f, 0});
   CHECK_FALSE(er.emission_fallback);
   opt.hit_point = HitPointMode::Barycentric;
-  CHECK(emit_ray(tr, scene, opt, &parents).ray.o == Vec3f{1, 2, 0});
+  CHECK(emit_ray(tr, scene, opt, find_parent(parents, tr.parent)).ray.o == Vec3f{1, 2, 0});
   // Without the parent ray, the ray-equation point cannot be formed: fallback.
   opt.hit_point = HitPointMode::Ray;
   er = emit_ray(tr, scene, opt, nullptr);

@@ -29,7 +29,7 @@ inline int check_expects_brute_force(const std::string& trace, int stride) {
   for (size_t i = 0; i < rays.size(); i += static_cast<size_t>(stride)) {
     const TraceRay& r = rays[i];
     REQUIRE(r.has_expect);
-    const ReferenceClosest ref = reference_closest(scene, intended_ray(r, scene, &parents));
+    const ReferenceClosest ref = reference_closest(scene, intended_ray(r, scene, find_parent(parents, r.parent)));
     INFO(trace << " ray " << r.id << " expect " << r.expect_prim);
     if (ref.ties.empty()) {
       CHECK(r.expect_prim == -1);
