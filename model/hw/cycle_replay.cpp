@@ -5,6 +5,8 @@
 #include <stdexcept>
 
 #include "hw/hw_stats.h"
+#include "io/atomic_output_file.h"
+#include "replay/ray_conservation.h"
 
 namespace vbsim::hw {
 
@@ -14,7 +16,13 @@ CycleRunResult run_cycle_replay(const RayFeed& feed, const Scene& scene, const B
   FunctionalReplayer replayer(scene, bvh, opt);
   replayer.set_track_parents(options.track_parents);
   const auto start = std::chrono::steady_clock::now();
-  const std::unique_ptr<CycleEngine> engine = make_cycle_engine(cfg, replayer, bvh, *memory, feed, sink);
+  uint64_t fed = 0;  // rays in, for the conservation check
+  const RayFeed counted = [&feed, &fed](TraceRay& tr) {
+    const bool got = feed(tr);
+    fed += got ? 1 : 0;
+    return got;
+  };
+  const std::unique_ptr<CycleEngine> engine = make_cycle_engine(cfg, replayer, bvh, *memory, counted, sink);
   std::vector<TimelineEvent> timeline;
   if (!options.timeline.empty())
     engine->set_timeline_window(options.timeline_first, options.timeline_cycles, &timeline);
@@ -25,6 +33,13 @@ CycleRunResult run_cycle_replay(const RayFeed& feed, const Scene& scene, const B
   r.stats.mode = "cycle";
   r.stats.partial = engine->stopped();
   r.stats.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  // Rays in = rays out; a stopped run drops the rays in its slots and the one the source holds.
+  const uint64_t done = r.stats.total().rays;
+  r.stats.rays_dropped = fed >= done ? fed - done : 0;
+  if (!r.stats.partial)
+    check_ray_conservation("cycle-level replay", fed, done);
+  else if (done > fed || r.stats.rays_dropped > engine->rays_in_flight() + 1)
+    check_ray_conservation("stopped cycle-level replay", fed, done, engine->rays_in_flight());
   r.counters = engine->counters();
   const nlohmann::json mem = memory->stats();
   const HwReport report{r.counters, cfg, r.stats, mem, sc};
@@ -44,9 +59,7 @@ void write_timeline(const std::string& path, const std::vector<TimelineEvent>& e
                     {"pid", e.core},
                     {"tid", e.slot},
                     {"args", {{"ray", e.ray_id}}}});
-  std::ofstream out(path);
-  if (!out) throw std::runtime_error(path + ": cannot write timeline");
-  out << nlohmann::json{{"traceEvents", list}, {"displayTimeUnit", "ns"}}.dump() << "\n";
+  write_output_file(path, nlohmann::json{{"traceEvents", list}, {"displayTimeUnit", "ns"}}.dump() + "\n", "timeline");
 }
 
 }  // namespace vbsim::hw

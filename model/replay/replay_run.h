@@ -11,10 +11,9 @@
 #include "scene/bvh.h"
 #include "scene/scene.h"
 #include "trace/trace_record.h"
+#include "trace/trace_source.h"
 
 namespace vbsim {
-
-class TraceSource;
 
 /// A trace's scene, loaded with the header's transform, and its BVH.
 struct SceneAndBvh {
@@ -28,10 +27,30 @@ SceneAndBvh load_trace_scene(const TraceHeader& header);
 /// reversed ray, from the light).
 std::string hit_json_line(const TraceRay& tr, const RayOutcome& out);
 
+/// Runs `step` (which replays or emits the ray `source` returned last) and
+/// turns a ParentWindowError into a TraceError at that ray, field 'parent'.
+template <class Step>
+auto replay_at_trace_ray(const TraceSource& source, Step&& step) -> decltype(step()) {
+  try {
+    return step();
+  } catch (const ParentWindowError& e) {
+    throw source.error_at_last_ray("parent", e.what());
+  }
+}
+
 /// Replays every ray of `source` (whose scene is `sb`) and returns the stats.
 /// Each ray's hit line goes to `hits` when it is not null. `stop` (may be
-/// null) ends the run early; the stats are then marked partial.
+/// null) ends the run early; the stats are then marked partial. Checks that
+/// every ray read is counted (ConservationError otherwise).
 ReplayStats run_replay(TraceSource& source, const SceneAndBvh& sb, const ReplayOptions& opt,
                        std::ostream* hits, const std::atomic<bool>* stop = nullptr);
+
+/// Throws OutputError "PATH: write failed: REASON" when `hits` is in a failed
+/// state (a full disk): a run stops at its first failed write.
+void check_hits_stream(const std::ostream& hits, const std::string& path);
+
+/// The last line of a hits file whose run was stopped before the end of the
+/// trace: {"partial":true,"rays":N}, N the ray lines before it.
+std::string partial_hits_marker(uint64_t rays);
 
 }  // namespace vbsim

@@ -94,6 +94,7 @@ nlohmann::json ReplayStats::to_json(const nlohmann::json& config) const {
               {"wall_s", wall_s},
               {"rays_per_s", wall_s > 0 ? t.rays / wall_s : 0.0},
               {"partial", partial}};
+  if (partial && mode == "cycle") j["sim"]["rays_dropped"] = rays_dropped;
   return j;
 }
 

@@ -32,6 +32,7 @@ struct ReplayStats {
   std::string mode = "functional";
   double wall_s = 0.0;
   bool partial = false;
+  uint64_t rays_dropped = 0;  ///< a stopped cycle-level run: rays read but dropped in flight
 
   KindStats total() const;
   /// The stats JSON, with `config` the effective configuration.

@@ -8,6 +8,7 @@
 #include <set>
 
 #include "replay/functional_replayer.h"
+#include "replay/ray_conservation.h"
 #include "replay/replay_run.h"
 #include "score/parallel_for.h"
 #include "score/trace_blocks.h"
@@ -29,12 +30,12 @@ bool is_trace_file(const fs::path& p) {
 
 /// Replays one trace with every configuration, adding into cells[0..configs).
 void score_trace(const std::string& path, const std::vector<ScoreConfig>& configs,
-                 std::vector<CandidateFilter>& filters, ScoreCell* cells, int threads) {
+                 std::vector<CandidateFilter>& filters, ScoreCell* cells, int threads, int64_t parent_window) {
   auto source = open_trace(path);
   const SceneAndBvh sb = load_trace_scene(source->header());
   check_traversal_depth(sb.bvh);
   source->set_triangle_count(sb.scene.size());
-  TraceBlocks blocks(*source);
+  TraceBlocks blocks(*source, parent_window);
   std::vector<ReplayStats> stats(configs.size());
   while (blocks.next_block(kBlockRays)) {
     parallel_for(configs.size(), threads, [&](size_t c) {
@@ -48,6 +49,8 @@ void score_trace(const std::string& path, const std::vector<ScoreConfig>& config
     });
   }
   for (size_t c = 0; c < configs.size(); ++c) {
+    check_ray_conservation(fmt::format("{} ({} {})", path, configs[c].method, tester_name(configs[c].options.tester)),
+                           static_cast<uint64_t>(blocks.rays_read()), stats[c].total().rays);
     for (int k = 0; k < kRayKindCount; ++k) cells[c].stats.by_kind[k].add(stats[c].by_kind[k]);
     cells[c].stats.wall_s += stats[c].wall_s;
     ++cells[c].traces;
@@ -96,7 +99,7 @@ std::vector<ScoreConfig> score_configs(const std::vector<MethodSpec>& methods,
 }
 
 std::vector<ScoreCell> run_score(const std::vector<ScoreFamily>& families,
-                                 const std::vector<ScoreConfig>& configs, int threads) {
+                                 const std::vector<ScoreConfig>& configs, int threads, int64_t parent_window) {
   std::vector<CandidateFilter> filters;
   for (const ScoreConfig& c : configs) filters.emplace_back(c.options.method);
   std::vector<ScoreCell> cells;
@@ -110,7 +113,7 @@ std::vector<ScoreCell> run_score(const std::vector<ScoreFamily>& families,
       cell.config = replay_config_json(c.options);
       cells.push_back(std::move(cell));
     }
-    for (const std::string& trace : fam.traces) score_trace(trace, configs, filters, &cells[first], threads);
+    for (const std::string& trace : fam.traces) score_trace(trace, configs, filters, &cells[first], threads, parent_window);
   }
   return cells;
 }

@@ -44,10 +44,13 @@ struct ScoreCell {
   int traces = 0;
 };
 
-/// Replays every family with every configuration using `threads` threads (>= 1).
+/// Replays every family with every configuration using `threads` threads (>= 1),
+/// parents looked up among the last `parent_window` rays (ParentRayStore).
 /// Cells are ordered family, then configuration. Throws TraceError naming the
-/// trace on bad input.
+/// trace on bad input, ConservationError when a configuration's statistics do
+/// not count every ray read.
 std::vector<ScoreCell> run_score(const std::vector<ScoreFamily>& families,
-                                 const std::vector<ScoreConfig>& configs, int threads);
+                                 const std::vector<ScoreConfig>& configs, int threads,
+                                 int64_t parent_window = ParentRayStore::kDefaultWindow);
 
 }  // namespace vbsim
