@@ -3,6 +3,9 @@
 #include <stb/stb_image_write.h>
 
 #include <stdexcept>
+#include <string>
+
+#include "io/atomic_output_file.h"
 
 namespace vbsim {
 
@@ -10,8 +13,13 @@ void write_png_rgb(const std::string& path, int width, int height, const std::ve
   if (width <= 0 || height <= 0 || rgb.size() != size_t(width) * size_t(height) * 3)
     throw std::runtime_error(path + ": image buffer does not match " + std::to_string(width) + "x" +
                              std::to_string(height));
-  if (!stbi_write_png(path.c_str(), width, height, 3, rgb.data(), width * 3))
-    throw std::runtime_error(path + ": cannot write PNG image");
+  std::string png;
+  const auto append = [](void* out, void* data, int size) {
+    static_cast<std::string*>(out)->append(static_cast<const char*>(data), static_cast<size_t>(size));
+  };
+  if (!stbi_write_png_to_func(append, &png, width, height, 3, rgb.data(), width * 3))
+    throw std::runtime_error(path + ": cannot encode PNG image");
+  write_output_file(path, png, "PNG image");
 }
 
 }  // namespace vbsim

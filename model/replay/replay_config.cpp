@@ -1,6 +1,11 @@
 #include "replay/replay_config.h"
 
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
 #include <fstream>
+#include <map>
+#include <mutex>
 
 #include "replay/config_fields.h"
 
@@ -67,13 +72,27 @@ void apply_replay_config(const nlohmann::json& j, const std::string& file, Repla
 }
 
 nlohmann::json read_config_json(const std::string& path) {
+  // A pipe (/dev/stdin, <(...)) can be read once: its content is kept for the
+  // second reader of the same run (the method and the hw settings).
+  static std::mutex mutex;
+  static std::map<std::string, nlohmann::json> pipes;
+  std::error_code ec;
+  const bool regular = std::filesystem::is_regular_file(path, ec);
+  const std::lock_guard<std::mutex> lock(mutex);
+  if (!regular) {
+    const auto it = pipes.find(path);
+    if (it != pipes.end()) return it->second;
+  }
   std::ifstream in(path);
-  if (!in) throw ConfigError(fmt::format("{}: cannot open config file", path));
+  if (!in) throw ConfigError(fmt::format("{}: cannot open config file: {}", path, std::strerror(errno)));
+  nlohmann::json j;
   try {
-    return nlohmann::json::parse(in);
+    j = nlohmann::json::parse(in);
   } catch (const nlohmann::json::parse_error& e) {
     throw ConfigError(fmt::format("{}: not valid JSON: {}", path, e.what()));
   }
+  if (!regular) pipes[path] = j;
+  return j;
 }
 
 void load_replay_config(const std::string& path, ReplayOptions& opt) {

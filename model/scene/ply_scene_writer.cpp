@@ -4,7 +4,8 @@
 
 #include <cstdint>
 #include <cstring>
-#include <fstream>
+
+#include "io/atomic_output_file.h"
 
 #include "scene/scene.h"
 
@@ -59,9 +60,13 @@ void write_ply_scene(const std::string& path, const std::vector<Triangle>& trian
     put(out, static_cast<uint8_t>(3));
     for (int c = 0; c < 3; ++c) put(out, static_cast<int32_t>(3 * k + c));
   }
-  std::ofstream file(path, std::ios::binary);
-  if (!file || !file.write(out.data(), static_cast<std::streamsize>(out.size())) || !file.flush())
-    throw SceneError(fmt::format("{}: cannot write the scene file", path));
+  try {
+    AtomicOutputFile file(path, true);
+    file.stream().write(out.data(), static_cast<std::streamsize>(out.size()));
+    file.commit();
+  } catch (const OutputError& e) {
+    throw SceneError(fmt::format("{}: cannot write the scene file: {}", path, e.message));
+  }
 }
 
 }  // namespace vbsim

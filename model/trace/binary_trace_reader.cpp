@@ -14,8 +14,10 @@ namespace {
 constexpr std::size_t kRecordsPerRead = 1024;
 }
 
-BinaryTraceReader::BinaryTraceReader(std::string path) : path_(std::move(path)) {
-  std::ifstream in = RecordFileReader::open_file(path_);
+BinaryTraceReader::BinaryTraceReader(std::string path)
+    : BinaryTraceReader(path, RecordFileReader::open_file(path)) {}
+
+BinaryTraceReader::BinaryTraceReader(std::string path, std::ifstream in) : path_(std::move(path)) {
 
   uint8_t preamble[kBinaryTracePreambleBytes];
   in.read(reinterpret_cast<char*>(preamble), sizeof preamble);

@@ -3,6 +3,7 @@
 // validating every ray with the same rules as the text reader.
 #pragma once
 #include <cstdint>
+#include <fstream>
 #include <string>
 
 #include "trace/record_file_reader.h"
@@ -17,6 +18,8 @@ class BinaryTraceReader final : public TraceSource {
   /// header JSON, and rejects a file whose size leaves a partial last record
   /// (error at that record's index). Throws TraceError.
   explicit BinaryTraceReader(std::string path);
+  /// The same on `in`, already opened on `path` and not read from.
+  BinaryTraceReader(std::string path, std::ifstream in);
 
   const TraceHeader& header() const override { return header_; }
   /// Next record; false at the end. Errors name "record N" (0-based) and the field.

@@ -12,22 +12,14 @@ namespace vbsim {
 RecordFileWriter::RecordFileWriter(std::string path, std::size_t record_bytes,
                                    std::size_t records_per_write, std::string_view prefix)
     : path_(std::move(path)), record_bytes_(record_bytes) {
-  out_.open(path_, std::ios::out | std::ios::binary | std::ios::trunc);
-  if (!out_)
-    throw TraceError::in_file(path_, fmt::format("cannot create: {}", std::strerror(errno)));
-  out_.write(prefix.data(), static_cast<std::streamsize>(prefix.size()));
-  if (!out_) throw TraceError::in_file(path_, "write failed");
-  buffer_.resize(records_per_write * record_bytes_);
-}
-
-RecordFileWriter::~RecordFileWriter() {
-  if (!closed_) {
-    try {
-      close();
-    } catch (const TraceError&) {
-      // Destructors must not throw; close() reports errors to callers who ask.
-    }
+  try {
+    out_ = std::make_unique<AtomicOutputFile>(path_, true);
+  } catch (const OutputError& e) {
+    throw TraceError::in_file(path_, e.message);
   }
+  out_->stream().write(prefix.data(), static_cast<std::streamsize>(prefix.size()));
+  if (!out_->stream()) throw TraceError::in_file(path_, fmt::format("write failed: {}", std::strerror(errno)));
+  buffer_.resize(records_per_write * record_bytes_);
 }
 
 void RecordFileWriter::require_open() const {
@@ -35,17 +27,21 @@ void RecordFileWriter::require_open() const {
 }
 
 void RecordFileWriter::flush_buffer() {
-  out_.write(reinterpret_cast<const char*>(buffer_.data()), static_cast<std::streamsize>(used_));
+  std::ostream& out = out_->stream();
+  out.write(reinterpret_cast<const char*>(buffer_.data()), static_cast<std::streamsize>(used_));
   used_ = 0;
-  if (!out_) throw TraceError::in_file(path_, "write failed");
+  if (!out) throw TraceError::in_file(path_, fmt::format("write failed: {}", std::strerror(errno)));
 }
 
 void RecordFileWriter::close() {
   if (closed_) return;
   closed_ = true;
   flush_buffer();
-  out_.close();
-  if (!out_) throw TraceError::in_file(path_, "write failed while closing");
+  try {
+    out_->commit();
+  } catch (const OutputError& e) {
+    throw TraceError::in_file(path_, e.message);
+  }
 }
 
 }  // namespace vbsim

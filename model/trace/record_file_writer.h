@@ -6,23 +6,25 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
-#include <fstream>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include "io/atomic_output_file.h"
 
 namespace vbsim {
 
 class RecordFileWriter {
  public:
-  /// Creates (or truncates) `path` and writes `prefix`, the bytes before the
-  /// first record. Records are `record_bytes` long, written out
+  /// Creates `path` (under a temporary name until close(): AtomicOutputFile)
+  /// and writes `prefix`, the bytes before the first record. Records are `record_bytes` long, written out
   /// `records_per_write` at a time. Throws TraceError "cannot create: <reason>"
   /// or "write failed".
   RecordFileWriter(std::string path, std::size_t record_bytes, std::size_t records_per_write,
                    std::string_view prefix = {});
-  /// Closes the file if close() was not called, swallowing errors.
-  ~RecordFileWriter();
+  /// Without close(), removes the temporary: no file appears.
+  ~RecordFileWriter() = default;
   RecordFileWriter(const RecordFileWriter&) = delete;
   RecordFileWriter& operator=(const RecordFileWriter&) = delete;
 
@@ -38,8 +40,8 @@ class RecordFileWriter {
     ++records_written_;
     if (used_ == buffer_.size()) flush_buffer();
   }
-  /// Writes out the buffered records and closes the file; a second call does
-  /// nothing. Throws TraceError "write failed" or "write failed while closing".
+  /// Writes out the buffered records, closes the file and gives it its name;
+  /// a second call does nothing. Throws TraceError "write failed: REASON".
   void close();
 
   /// Records appended so far, which is the 0-based index of the next one.
@@ -49,7 +51,7 @@ class RecordFileWriter {
   void flush_buffer();
 
   std::string path_;
-  std::ofstream out_;
+  std::unique_ptr<AtomicOutputFile> out_;
   std::size_t record_bytes_;
   std::vector<uint8_t> buffer_;
   std::size_t used_ = 0;  ///< bytes of buffered records in buffer_

@@ -92,8 +92,10 @@ void parse_trace_ray(const json& object, TraceRay& out) {
 }  // namespace
 
 TextTraceReader::TextTraceReader(std::string path)
-    : path_(std::move(path)) {
-  in_.open(path_, std::ios::in | std::ios::binary);
+    : TextTraceReader(path, std::ifstream(path, std::ios::in | std::ios::binary)) {}
+
+TextTraceReader::TextTraceReader(std::string path, std::ifstream in)
+    : path_(std::move(path)), in_(std::move(in)) {
   if (!in_) throw TraceError::in_file(path_, fmt::format("cannot open: {}", std::strerror(errno)));
   if (!read_content_line())
     throw TraceError::in_file(path_, "empty: no header line");

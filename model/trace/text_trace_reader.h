@@ -16,6 +16,9 @@ class TextTraceReader final : public TraceSource {
   /// Opens `path` and reads and validates its header line (blank lines and
   /// '#' comment lines before it are skipped). Throws TraceError.
   explicit TextTraceReader(std::string path);
+  /// The same on `in`, already opened on `path` and not read from (so that a
+  /// pipe is opened once).
+  TextTraceReader(std::string path, std::ifstream in);
 
   const TraceHeader& header() const override { return header_; }
   /// Next ray in file order; false at the end. Throws TraceError naming the

@@ -73,29 +73,22 @@ TextTraceWriter::TextTraceWriter(std::string path, const TraceHeader& header)
   } catch (const TraceFieldProblem& p) {
     throw TraceError::at_line(path_, 1, p.field, p.message);
   }
-  out_.open(path_, std::ios::out | std::ios::binary | std::ios::trunc);
-  if (!out_)
-    throw TraceError::in_file(path_, fmt::format("cannot create: {}", std::strerror(errno)));
+  try {
+    out_ = std::make_unique<AtomicOutputFile>(path_, true);
+  } catch (const OutputError& e) {
+    throw TraceError::in_file(path_, e.message);
+  }
   line_.append(header_line.data(), header_line.data() + header_line.size());
   flush_line();
 }
 
-TextTraceWriter::~TextTraceWriter() {
-  if (!closed_) {
-    try {
-      close();
-    } catch (const TraceError&) {
-      // Destructors must not throw; close() reports errors to callers who ask.
-    }
-  }
-}
-
 void TextTraceWriter::flush_line() {
   line_.push_back('\n');
-  out_.write(line_.data(), static_cast<std::streamsize>(line_.size()));
+  std::ostream& out = out_->stream();
+  out.write(line_.data(), static_cast<std::streamsize>(line_.size()));
   line_.clear();
   ++line_number_;
-  if (!out_) throw TraceError::at_line(path_, line_number_, "", "write failed");
+  if (!out) throw TraceError::at_line(path_, line_number_, "", fmt::format("write failed: {}", std::strerror(errno)));
 }
 
 void TextTraceWriter::write(const TraceRay& ray) {
@@ -110,8 +103,11 @@ void TextTraceWriter::write(const TraceRay& ray) {
 void TextTraceWriter::close() {
   if (closed_) return;
   closed_ = true;
-  out_.close();
-  if (!out_) throw TraceError::in_file(path_, "write failed while closing");
+  try {
+    out_->commit();
+  } catch (const OutputError& e) {
+    throw TraceError::in_file(path_, e.message);
+  }
 }
 
 }  // namespace vbsim

@@ -4,11 +4,12 @@
 // (expect.t: the same double), so reading the output gives identical rays.
 #pragma once
 #include <cstdint>
-#include <fstream>
+#include <memory>
 #include <string>
 
 #include <fmt/format.h>
 
+#include "io/atomic_output_file.h"
 #include "trace/trace_source.h"
 #include "trace/trace_validation.h"
 
@@ -23,13 +24,15 @@ void append_trace_ray_json(fmt::memory_buffer& out, const TraceRay& ray);
 
 class TextTraceWriter final : public TraceSink {
  public:
-  /// Creates (or truncates) `path` and writes the header line. Throws TraceError.
+  /// Creates `path` (under a temporary name until close(): AtomicOutputFile)
+  /// and writes the header line. Throws TraceError.
   TextTraceWriter(std::string path, const TraceHeader& header);
-  ~TextTraceWriter() override;
 
   /// Validates `ray` as a reader would (ids unique, values finite, ...) and
   /// appends its line; throws TraceError naming the output line and field.
   void write(const TraceRay& ray) override;
+  /// Writes the file out and gives it its name; throws TraceError on a write error.
+  /// A writer destroyed without close() leaves no file.
   void close() override;
   const std::string& path() const override { return path_; }
 
@@ -37,7 +40,7 @@ class TextTraceWriter final : public TraceSink {
   void flush_line();
 
   std::string path_;
-  std::ofstream out_;
+  std::unique_ptr<AtomicOutputFile> out_;
   fmt::memory_buffer line_;
   int64_t line_number_ = 0;  ///< 1-based number of the line last written
   TraceRayValidator validator_;

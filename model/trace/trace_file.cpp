@@ -21,16 +21,12 @@ bool is_binary_trace_path(const std::string& path) {
 }
 
 std::unique_ptr<TraceSource> open_trace(const std::string& path) {
-  char magic[sizeof kBinaryTraceMagic] = {};
-  {
-    std::ifstream probe(path, std::ios::in | std::ios::binary);
-    if (!probe) throw TraceError::in_file(path, fmt::format("cannot open: {}", std::strerror(errno)));
-    probe.read(magic, sizeof magic);
-    if (probe.gcount() != static_cast<std::streamsize>(sizeof magic)) magic[0] = 0;
-  }
-  if (std::memcmp(magic, kBinaryTraceMagic, sizeof magic) == 0)
-    return std::make_unique<BinaryTraceReader>(path);
-  return std::make_unique<TextTraceReader>(path);
+  // Opened once, and only its first byte peeked: a pipe (/dev/stdin, <(...)) works too.
+  std::ifstream in(path, std::ios::in | std::ios::binary);
+  if (!in) throw TraceError::in_file(path, fmt::format("cannot open: {}", std::strerror(errno)));
+  // Text traces start with '{', '#' or white space; the binary magic with 'V'.
+  if (in.peek() == kBinaryTraceMagic[0]) return std::make_unique<BinaryTraceReader>(path, std::move(in));
+  return std::make_unique<TextTraceReader>(path, std::move(in));
 }
 
 std::unique_ptr<TraceSink> create_trace_writer(const std::string& path, const TraceHeader& header) {

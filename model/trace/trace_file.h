@@ -16,8 +16,9 @@ constexpr const char* kBinaryTraceExtension = ".vbt";
 bool is_binary_trace_path(const std::string& path);
 
 /// Opens a trace for streaming: binary when the file starts with the
-/// "VBSIMTRB" magic, text otherwise (whatever its extension). Reads and
-/// validates the header; throws TraceError.
+/// "VBSIMTRB" magic (its first byte decides; the binary reader checks the
+/// rest), text otherwise (whatever its extension). Opens `path` once, so it
+/// may be a pipe. Reads and validates the header; throws TraceError.
 std::unique_ptr<TraceSource> open_trace(const std::string& path);
 
 /// Creates a trace file and writes `header`: binary when `path` ends in

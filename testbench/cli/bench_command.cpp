@@ -7,6 +7,7 @@
 #include "bench/cycle_bench.h"
 #include "bench/functional_bench.h"
 #include "commands.h"
+#include "io/atomic_output_file.h"
 #include "method_options.h"
 #include "replay/replay_stats.h"
 
@@ -56,11 +57,7 @@ void run_bench(const BenchArgs& a) {
   j["seed"] = a.seed;
   j["repeats"] = a.repeats;
   j["config"] = replay_config_json(opt);
-  if (!a.json.empty()) {
-    std::ofstream out(a.json);
-    if (!out) throw std::runtime_error(fmt::format("{}: cannot write JSON", a.json));
-    out << j.dump(2) << "\n";
-  }
+  if (!a.json.empty()) write_output_file(a.json, j.dump(2) + "\n", "bench JSON");
   fmt::print("vbsim bench ({}, {} rays, {} triangles, method {}, tester {}, best of {})\n", a.mode,
              r.rays, scene.size(), opt.method.name(), tester_name(opt.tester), a.repeats);
   fmt::print("  vbsim   {:>12.0f} rays/s   ({} hits)\n", r.vbsim_rays_per_s, r.vbsim_hits);

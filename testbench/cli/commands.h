@@ -2,6 +2,7 @@
 // sets a callback; errors are thrown and reported once by main().
 #pragma once
 #include <CLI/CLI.hpp>
+#include <cstdint>
 #include <string>
 
 namespace vbsim::cli {
@@ -22,5 +23,9 @@ void add_render_command(CLI::App& app);
 
 /// The main job: replay of the default trace with validity-bit, printed summary.
 int run_default_job();
+
+/// `--parent-window N`: rays kept for children to find their parent in
+/// (ParentRayStore), checked to be in 1..ParentRayStore::kMaxWindow.
+void add_parent_window_option(CLI::App& cmd, int64_t& window);
 
 }  // namespace vbsim::cli

@@ -2,6 +2,7 @@
 #include <fmt/format.h>
 
 #include "commands.h"
+#include "io/output_paths.h"
 #include "trace/rtcore_ray_import.h"
 #include "trace/trace_file.h"
 #include "trace/trace_header_json.h"
@@ -15,6 +16,7 @@ struct ConvertArgs {
 };
 
 void run_convert(const ConvertArgs& a) {
+  check_output_paths({{"input", a.in}, {"option '--scene'", a.scene}}, {{"option '--out'", a.out}});
   std::unique_ptr<TraceSource> source;
   if (a.from == "vbsim") {
     source = open_trace(a.in);
@@ -24,6 +26,7 @@ void run_convert(const ConvertArgs& a) {
   } else {
     throw std::runtime_error(fmt::format("option '--from': unknown format '{}'; formats: vbsim, rtcore", a.from));
   }
+  check_output_paths({{"scene", source->header().scene_path}}, {{"option '--out'", a.out}});
   TraceHeader header = source->header();
   header.scene = scene_relative_to(header.scene_path, a.out);  // the output may live elsewhere
   auto sink = create_trace_writer(a.out, header);

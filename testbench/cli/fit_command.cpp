@@ -7,6 +7,7 @@
 #include <thread>
 
 #include "commands.h"
+#include "io/atomic_output_file.h"
 #include "fit/fit_report.h"
 #include "replay/replay_config.h"
 #include "score/score_run.h"
@@ -75,11 +76,7 @@ void run_fit_command(const FitArgs& a) {
     report["fits"].push_back(fit_json(r));
     if (!a.quiet) fmt::print("{}", fit_text(r));
   }
-  if (!a.json.empty()) {
-    std::ofstream out(a.json);
-    if (!out || !(out << report.dump(2) << "\n"))
-      throw std::runtime_error(fmt::format("{}: cannot write fit JSON", a.json));
-  }
+  if (!a.json.empty()) write_output_file(a.json, report.dump(2) + "\n", "fit JSON");
 }
 
 }  // namespace

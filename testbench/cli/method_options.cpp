@@ -2,6 +2,7 @@
 
 #include <sstream>
 
+#include "commands.h"
 #include "replay/replay_config.h"
 
 namespace vbsim::cli {
@@ -30,6 +31,15 @@ void add_method_options(CLI::App& app, MethodOptions& o, const std::string& defa
   app.add_option("--vb-min-exponent", o.vb_min_exponent, "validity-bit: minimum biased exponent [110]");
   app.add_option("--vb-tests", o.vb_tests, "validity-bit: epsilon tests, comma list of normal,ray,component [normal,ray]");
   app.add_option("--vb-component-scale", o.vb_component_scale, "validity-bit: component test multiplier [0.577]");
+  add_parent_window_option(app, o.parent_window);
+}
+
+void add_parent_window_option(CLI::App& cmd, int64_t& window) {
+  cmd.add_option("--parent-window", window,
+                 "rays kept for children to look their parent up in (about 40 bytes each); a child whose parent "
+                 "lies further back is an error")
+      ->check(CLI::Range(int64_t{1}, ParentRayStore::kMaxWindow))
+      ->capture_default_str();
 }
 
 ReplayOptions resolve_method_options(const MethodOptions& o) {
@@ -64,6 +74,7 @@ ReplayOptions resolve_method_options(const MethodOptions& o) {
     j["validity_bit"]["tests"] = tests;
   }
   apply_replay_config(j, "command line", opt);
+  opt.parent_window = o.parent_window;
   return opt;
 }
 

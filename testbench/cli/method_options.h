@@ -19,6 +19,7 @@ struct MethodOptions {
   std::optional<std::string> vb_policy, vb_eps_mode, vb_tests;
   std::optional<float> vb_eps, vb_component_scale;
   std::optional<int> vb_guard_bits, vb_min_exponent;
+  int64_t parent_window = ParentRayStore::kDefaultWindow;  ///< --parent-window
 };
 
 /// Registers the options on `app`, storing into `o`.

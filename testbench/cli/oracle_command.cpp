@@ -4,6 +4,7 @@
 #include <chrono>
 
 #include "commands.h"
+#include "io/output_paths.h"
 #include "exact/expected_answers.h"
 #include "replay/replay_run.h"
 #include "trace/trace_file.h"
@@ -15,21 +16,23 @@ namespace {
 
 struct OracleArgs {
   std::string trace, out;
+  int64_t parent_window = ParentRayStore::kDefaultWindow;
 };
 
 void run_oracle(const OracleArgs& a) {
   auto source = open_trace(a.trace);
+  check_output_paths({{"trace", a.trace}, {"scene", source->header().scene_path}}, {{"option '--out'", a.out}});
   const SceneAndBvh sb = load_trace_scene(source->header());
   source->set_triangle_count(sb.scene.size());
   TraceHeader header = source->header();
   header.scene = scene_relative_to(header.scene_path, a.out);
   auto sink = create_trace_writer(a.out, header);
-  ExpectationFiller filler(sb.scene, sb.bvh);  // parents must precede children, as in a replay
+  ExpectationFiller filler(sb.scene, sb.bvh, a.parent_window);  // parents precede children, as in a replay
   TraceRay tr;
   int64_t rays = 0, hits = 0;
   const auto t0 = std::chrono::steady_clock::now();
   while (source->next(tr)) {
-    const OracleAnswer ans = filler.fill(tr);
+    const OracleAnswer ans = replay_at_trace_ray(*source, [&] { return filler.fill(tr); });
     sink->write(tr);
     ++rays;
     hits += ans.prim >= 0;
@@ -47,6 +50,7 @@ void add_oracle_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("oracle", "fill in the exact answer (expect) of every ray");
   cmd->add_option("trace", args->trace, "input trace")->required();
   cmd->add_option("-o,--out", args->out, "output trace (.jsonl or .vbt)")->required();
+  add_parent_window_option(*cmd, args->parent_window);
   cmd->callback([args] { run_oracle(*args); });
 }
 

@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "commands.h"
+#include "io/atomic_output_file.h"
 #include "method_options.h"
 #include "render/float_list.h"
 #include "render/png_file.h"
@@ -94,8 +95,6 @@ int run_render(const RenderArgs& a) {
   const uint64_t rays = r.stats.total().rays;
   const double rays_per_s = r.stats.wall_s > 0 ? rays / r.stats.wall_s : 0.0;
   if (!a.stats.empty()) {
-    std::ofstream out(a.stats);
-    if (!out) throw std::runtime_error(fmt::format("{}: cannot write stats file", a.stats));
     nlohmann::json config = replay_config_json(opt);
     config["scene"] = a.scene;
     config["triangles"] = sb.scene.size();
@@ -105,7 +104,7 @@ int run_render(const RenderArgs& a) {
     j["pixels"] = {{"total", uint64_t(r.width) * uint64_t(r.height)},
                    {"acne", r.acne_pixels},
                    {"leak", r.leak_pixels}};
-    out << j.dump(2) << "\n";
+    write_output_file(a.stats, j.dump(2) + "\n", "stats file");
   }
   if (!a.quiet) {
     fmt::print("vbsim render {}  method {}  tester {}  {}x{}  light {}  ({} triangles)\n", a.scene,

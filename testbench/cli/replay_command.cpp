@@ -9,6 +9,8 @@
 #include <unistd.h>
 
 #include "hw/cycle_replay.h"
+#include "io/atomic_output_file.h"
+#include "io/output_paths.h"
 #include "hw/trace_order_buffer.h"
 
 #include "commands.h"
@@ -22,6 +24,25 @@ namespace {
 
 std::atomic<bool> g_stop{false};
 extern "C" void on_interrupt(int) { g_stop.store(true); }
+
+/// SIGINT and SIGTERM stop the run at the next ray; the previous handlers
+/// come back when it ends (or throws).
+class InterruptScope {
+ public:
+  InterruptScope() {
+    g_stop = false;
+    int_ = std::signal(SIGINT, on_interrupt);
+    term_ = std::signal(SIGTERM, on_interrupt);
+  }
+  ~InterruptScope() {
+    std::signal(SIGINT, int_);
+    std::signal(SIGTERM, term_);
+  }
+
+ private:
+  void (*int_)(int);
+  void (*term_)(int);
+};
 
 struct ReplayArgs {
   std::string trace;
@@ -57,11 +78,14 @@ ReplayStats run_cycle_mode(const ReplayArgs& a, const ReplayOptions& opt, TraceS
   // Rays finish out of order; the hits file lists them in trace order, as the functional replay does.
   std::unique_ptr<hw::TraceOrderBuffer> ordered;
   if (hits) ordered = std::make_unique<hw::TraceOrderBuffer>(*hits);
-  const hw::RayResultSink sink = [&ordered](const TraceRay& tr, const RayOutcome& out, uint64_t, uint64_t index) {
+  const hw::RayResultSink sink = [&ordered, hits](const TraceRay& tr, const RayOutcome& out, uint64_t, uint64_t index) {
     ordered->put(index, hit_json_line(tr, out));
+    check_hits_stream(*hits, "hits output");
   };
-  hw::CycleRunResult r = hw::run_cycle_replay([&source](TraceRay& tr) { return source.next(tr); }, sb.scene, sb.bvh,
-                                              opt, cfg, hits ? sink : hw::RayResultSink{}, run);
+  hw::CycleRunResult r = replay_at_trace_ray(source, [&] {
+    return hw::run_cycle_replay([&source](TraceRay& tr) { return source.next(tr); }, sb.scene, sb.bvh, opt, cfg,
+                                hits ? sink : hw::RayResultSink{}, run);
+  });
   if (ordered) ordered->flush();  // a stopped run: the finished rays after the first dropped one
   if (progress) fmt::print(stderr, "\n");
   hw = std::move(r.hw);
@@ -76,38 +100,45 @@ int run_replay_command(const ReplayArgs& a) {
     throw std::runtime_error("options '--preset', '--vcd' and '--timeline' need '--mode cycle'");
   const ReplayOptions opt = resolve_method_options(a.method);
   auto source = open_trace(a.trace);
+  // Before any long work: no output may overwrite an input or another output,
+  // and every output must be creatable.
+  check_output_paths({{"trace", a.trace}, {"option '--config'", a.method.config}, {"scene", source->header().scene_path}},
+                     {{"option '--stats'", a.stats},
+                      {"option '--hits'", a.hits},
+                      {"option '--timeline'", a.timeline},
+                      {"option '--vcd'", a.vcd}});
+  std::unique_ptr<AtomicOutputFile> stats_file, hits_file;
+  if (!a.stats.empty()) stats_file = std::make_unique<AtomicOutputFile>(a.stats);
+  if (!a.hits.empty()) hits_file = std::make_unique<AtomicOutputFile>(a.hits);
+  if (!a.timeline.empty()) AtomicOutputFile(a.timeline).discard();  // creatable; written at the end
   const SceneAndBvh sb = load_trace_scene(source->header());
 
-  std::ofstream hits_file;
-  if (!a.hits.empty()) {
-    hits_file.open(a.hits);
-    if (!hits_file) throw std::runtime_error(fmt::format("{}: cannot write hits file", a.hits));
-  }
   nlohmann::json config = replay_config_json(opt);
   nlohmann::json hw;  // cycle mode: the hw section
   std::string table;
-  g_stop = false;
-  auto previous = std::signal(SIGINT, on_interrupt);
-  std::ostream* hits = a.hits.empty() ? nullptr : &hits_file;
+  std::ostream* hits = hits_file ? &hits_file->stream() : nullptr;
   ReplayStats stats;
   try {
+    const InterruptScope interrupts;
     stats = a.mode == "cycle" ? run_cycle_mode(a, opt, *source, sb, hits, config, hw, table)
                               : run_replay(*source, sb, opt, hits, &g_stop);
-  } catch (...) {
-    std::signal(SIGINT, previous);
+  } catch (const OutputError& e) {
+    if (e.path == "hits output") throw OutputError(a.hits, e.message);
     throw;
   }
-  std::signal(SIGINT, previous);
 
-  if (!a.stats.empty()) {
-    std::ofstream out(a.stats);
-    if (!out) throw std::runtime_error(fmt::format("{}: cannot write stats file", a.stats));
+  if (hits_file) {  // a stopped run's hits end with a line that says so
+    if (stats.partial) hits_file->stream() << partial_hits_marker(stats.total().rays);
+    hits_file->commit();
+  }
+  if (stats_file) {
     config["trace"] = a.trace;
     config["scene"] = source->header().scene_path;
     config["triangles"] = sb.scene.size();
     nlohmann::json j = stats.to_json(config);
     if (!hw.is_null()) j["hw"] = std::move(hw);
-    out << j.dump(2) << "\n";
+    stats_file->stream() << j.dump(2) << "\n";
+    stats_file->commit();
   }
   if (!a.quiet) {
     fmt::print("vbsim replay {}  method {}  tester {}  scene {} ({} triangles)\n", a.trace,

@@ -7,6 +7,8 @@
 #include <thread>
 
 #include "commands.h"
+#include "io/atomic_output_file.h"
+#include "io/output_paths.h"
 #include "replay/replay_config.h"
 #include "score/score_run.h"
 #include "score/score_table.h"
@@ -21,6 +23,7 @@ struct ScoreArgs {
   std::string out, markdown, regenerate;
   int threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   bool quiet = false;
+  int64_t parent_window = ParentRayStore::kDefaultWindow;
 };
 
 std::vector<TesterKind> parse_testers(const std::string& list) {
@@ -43,12 +46,6 @@ std::string joined_default_methods() {
   return s;
 }
 
-void write_text(const std::string& path, const std::string& text, const char* what) {
-  std::ofstream out(path);
-  if (!out || !(out << text) || !(out.flush()))
-    throw std::runtime_error(fmt::format("{}: cannot write {}", path, what));
-}
-
 void print_summary(const nlohmann::json& score) {
   fmt::print("{:<14} {:<48} {:<17} {:>9} {:>10} {:>10} {:>10} {:>10}\n", "family", "method", "tester",
              "rays", "self_hit/M", "false/M", "missed/M", "rays/s");
@@ -69,17 +66,22 @@ void run_score_command(const ScoreArgs& a) {
       parse_method_list(a.methods.empty() ? joined_default_methods() : a.methods);
   const std::vector<TesterKind> testers = parse_testers(a.testers);
   const std::vector<ScoreFamily> families = collect_score_families(a.paths);
+  std::vector<NamedPath> inputs;
+  for (const ScoreFamily& f : families)
+    for (const std::string& t : f.traces) inputs.push_back({"trace", t});
+  check_output_paths(inputs, {{"option '--out'", a.out}, {"option '--accuracy-md'", a.markdown}});
 
   std::string command = "vbsim score";
   for (const std::string& p : a.paths) command += " " + p;
   if (!a.methods.empty()) command += " --methods " + a.methods;
   command += " --testers " + a.testers;
 
-  const std::vector<ScoreCell> cells = run_score(families, score_configs(methods, testers), a.threads);
+  const std::vector<ScoreCell> cells =
+      run_score(families, score_configs(methods, testers), a.threads, a.parent_window);
   const nlohmann::json score = score_json(families, cells, command);
-  if (!a.out.empty()) write_text(a.out, score.dump(1) + "\n", "score JSON");
+  if (!a.out.empty()) write_output_file(a.out, score.dump(1) + "\n", "score JSON");
   if (!a.markdown.empty())
-    write_text(a.markdown, score_markdown(score, a.regenerate.empty() ? command : a.regenerate), "markdown");
+    write_output_file(a.markdown, score_markdown(score, a.regenerate.empty() ? command : a.regenerate), "markdown");
   if (!a.quiet) print_summary(score);
 }
 
@@ -101,6 +103,7 @@ void add_score_command(CLI::App& app) {
   cmd->add_option("--regenerate-with", args->regenerate,
                   "the command the markdown names for regenerating it [this score command]");
   cmd->add_option("--threads", args->threads, "worker threads")->capture_default_str();
+  add_parent_window_option(*cmd, args->parent_window);
   cmd->add_flag("--quiet,-q", args->quiet, "print nothing on success");
   cmd->callback([args] { run_score_command(*args); });
 }

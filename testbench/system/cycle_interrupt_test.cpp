@@ -1,6 +1,7 @@
 // A long cycle-level replay on a terminal shows its progress line, and Ctrl-C
 // (SIGINT) stops it: exit status 130, statistics marked partial with fewer
-// rays than the trace, and a hits file holding exactly the finished rays.
+// rays than the trace, and a hits file holding exactly the finished rays and
+// a last line marking it partial.
 #include <catch2/catch.hpp>
 
 #include <poll.h>
@@ -85,6 +86,12 @@ TEST_CASE("Ctrl-C stops a cycle replay on a terminal and writes partial statisti
   const uint64_t done = s["hw"]["rays"].get<uint64_t>();
   CHECK(done > 0);
   CHECK(done < static_cast<uint64_t>(kRays));
+  // One line per finished ray, then the line that marks the file partial.
   const std::string lines = read_file(hits);
-  CHECK(static_cast<uint64_t>(std::count(lines.begin(), lines.end(), '\n')) == done);
+  CHECK(static_cast<uint64_t>(std::count(lines.begin(), lines.end(), '\n')) == done + 1);
+  const size_t last = lines.rfind('\n', lines.size() - 2);
+  const auto marker = nlohmann::json::parse(lines.substr(last + 1));
+  CHECK(marker["partial"] == true);
+  CHECK(marker["rays"].get<uint64_t>() == done);
+  CHECK(s["sim"]["rays_dropped"].get<uint64_t>() > 0);
 }

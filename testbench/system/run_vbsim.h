@@ -17,16 +17,28 @@ struct RunResult {
   std::string output;
 };
 
-inline RunResult run_vbsim(const std::string& args) {
+/// Runs the shell command `cmd`, stderr joined to stdout.
+inline RunResult run_command(const std::string& cmd) {
   RunResult r;
-  const std::string cmd = std::string(VBSIM_BINARY) + " " + args + " 2>&1";
-  FILE* pipe = popen(cmd.c_str(), "r");
+  FILE* pipe = popen((cmd + " 2>&1").c_str(), "r");
   if (!pipe) return r;
   std::array<char, 4096> buf;
   size_t n;
   while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) r.output.append(buf.data(), n);
   const int status = pclose(pipe);
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+inline RunResult run_vbsim(const std::string& args) { return run_command(std::string(VBSIM_BINARY) + " " + args); }
+
+/// As run_vbsim, through bash rather than sh, for arguments that need it
+/// (process substitution <(...)).
+inline RunResult run_vbsim_bash(const std::string& args) {
+  const auto script = std::filesystem::temp_directory_path() / ("vbsim_bash_" + std::to_string(::getpid()) + ".sh");
+  std::ofstream(script) << std::string(VBSIM_BINARY) << " " << args << "\n";
+  const RunResult r = run_command("bash " + script.string());
+  std::filesystem::remove(script);
   return r;
 }
 

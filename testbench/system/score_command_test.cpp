@@ -137,7 +137,7 @@ TEST_CASE("score rejects bad input with a clear message", "[system][score][error
       {"score " + bunny + " --testers slab", "unknown tester 'slab'"},
       {"score " + bunny + " " + bunny, "a second scenario family named 'bunny'"},
       {"score " + bunny + " --threads 0", "--threads"},
-      {"score " + bunny + " --methods none --out /nonexistent/dir/s.json", "cannot write score JSON"},
+      {"score " + bunny + " --methods none --out /nonexistent/dir/s.json", "/nonexistent/dir/s.json: cannot create"},
   };
   for (const Case& c : cases) {
     const RunResult r = run_vbsim(c.args);

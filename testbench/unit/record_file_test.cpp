@@ -150,17 +150,21 @@ TEST_CASE("record file writer: prefix, then records across buffer flushes", "[tr
   CHECK(read_file(path) == "PRE" + numbered_records(count, 3));
 }
 
-TEST_CASE("record file writer: the destructor writes what close() would", "[trace]") {
+TEST_CASE("record file writer: without close() no file appears", "[trace]") {
   TempDir dir("record-file-writer-dtor");
   const std::string path = dir.file("w.bin");
+  write_file(path, "previous");
   {
-    RecordFileWriter writer(path, 2, 8);
+    RecordFileWriter writer(path, 2, 1);  // a record per write: bytes reach the temporary at once
     writer.append([](uint8_t* record) {
       record[0] = 'o';
       record[1] = 'k';
     });
+    CHECK(read_file(path) == "previous");  // written under a temporary name until close()
   }
-  CHECK(read_file(path) == "ok");
+  CHECK(read_file(path) == "previous");  // a writer that never closed replaces nothing
+  CHECK(std::distance(std::filesystem::directory_iterator(std::filesystem::path(path).parent_path()),
+                      std::filesystem::directory_iterator{}) == 1);  // and leaves no temporary
 
   TraceError e = trace_error_of([&] { RecordFileWriter w(dir.file("no/such/dir/w.bin"), 2, 8); });
   CHECK(e.place == TraceError::Place::File);

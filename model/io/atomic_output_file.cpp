@@ -1,0 +1,149 @@
+#include "io/atomic_output_file.h"
+
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <array>
+#include <atomic>
+#include <cerrno>
+#include <csignal>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+
+#include <fmt/format.h>
+
+namespace vbsim {
+
+namespace {
+
+// ---- signal-time cleanup of open temporaries ----
+// A fixed table, so that the handler only reads memory and calls unlink(),
+// both async-signal-safe. Slots beyond the table are simply not cleaned up.
+constexpr int kCleanupSlots = 64;
+constexpr size_t kCleanupPathBytes = 4096;
+std::array<std::array<char, kCleanupPathBytes>, kCleanupSlots> g_cleanup_paths;
+std::array<std::atomic<bool>, kCleanupSlots> g_cleanup_used{};
+std::atomic<bool> g_handlers_installed{false};
+
+extern "C" void remove_temporaries_and_reraise(int sig) {
+  for (int i = 0; i < kCleanupSlots; ++i)
+    if (g_cleanup_used[i].load()) ::unlink(g_cleanup_paths[i].data());
+  std::signal(sig, SIG_DFL);
+  std::raise(sig);
+}
+
+/// Installs the cleanup handler for SIGINT and SIGTERM where their action is
+/// still the default (a program's own handler stays in charge).
+void install_cleanup_handlers() {
+  if (g_handlers_installed.exchange(true)) return;
+  for (int sig : {SIGINT, SIGTERM}) {
+    struct sigaction current {};
+    if (sigaction(sig, nullptr, &current) == 0 && current.sa_handler == SIG_DFL)
+      std::signal(sig, remove_temporaries_and_reraise);
+  }
+}
+
+int register_temporary(const std::string& path) {
+  if (path.size() >= kCleanupPathBytes) return -1;
+  for (int i = 0; i < kCleanupSlots; ++i) {
+    bool expected = false;
+    if (g_cleanup_used[i].load() || !g_cleanup_used[i].compare_exchange_strong(expected, true)) continue;
+    // A signal between the claim and the copy unlinks a stale name of this
+    // process (already gone) or "": harmless.
+    std::memcpy(g_cleanup_paths[i].data(), path.c_str(), path.size() + 1);
+    install_cleanup_handlers();
+    return i;
+  }
+  return -1;
+}
+
+void unregister_temporary(int slot) {
+  if (slot >= 0) g_cleanup_used[slot].store(false);
+}
+
+std::string temporary_name(const std::string& path) {
+  static std::atomic<unsigned> counter{0};
+  return fmt::format("{}.partial-{}-{}", path, ::getpid(), counter.fetch_add(1));
+}
+
+std::string reason() { return errno != 0 ? std::strerror(errno) : "I/O error"; }
+
+}  // namespace
+
+AtomicOutputFile::AtomicOutputFile(std::string path, bool binary) : path_(std::move(path)) {
+  if (path_.empty()) throw OutputError("<empty>", "output path is empty");
+  struct stat st {};
+  if (::stat(path_.c_str(), &st) == 0 && !S_ISREG(st.st_mode)) {
+    in_place_ = true;
+    temp_ = path_;
+  } else {
+    // A symbolic link keeps pointing at the file it names: the new file replaces that file.
+    std::error_code ec;
+    if (std::filesystem::is_symlink(path_, ec)) {
+      const std::filesystem::path target = std::filesystem::canonical(path_, ec);
+      if (!ec) path_ = target.string();
+    }
+    temp_ = temporary_name(path_);
+  }
+  std::ios::openmode mode = std::ios::out | std::ios::trunc;
+  if (binary) mode |= std::ios::binary;
+  errno = 0;
+  out_.open(temp_, mode);
+  if (!out_) throw OutputError(path_, "cannot create: " + reason());
+  if (!in_place_) registry_slot_ = register_temporary(temp_);
+}
+
+AtomicOutputFile::~AtomicOutputFile() {
+  if (!done_) discard();
+}
+
+void AtomicOutputFile::check() const {
+  if (!out_) throw OutputError(path_, "write failed: " + reason());
+}
+
+void AtomicOutputFile::commit() {
+  if (done_) {
+    if (!committed_) throw OutputError(path_, "written after it was discarded");
+    return;
+  }
+  errno = 0;
+  out_.flush();
+  bool ok = static_cast<bool>(out_);
+  std::string why = ok ? "" : reason();
+  out_.close();
+  if (ok && !out_) {
+    ok = false;
+    why = reason();
+  }
+  if (ok && !in_place_ && std::rename(temp_.c_str(), path_.c_str()) != 0) {
+    ok = false;
+    why = fmt::format("cannot rename {} to it: {}", temp_, reason());
+  }
+  if (!ok) {
+    discard();
+    throw OutputError(path_, "write failed: " + why);
+  }
+  unregister_temporary(registry_slot_);
+  done_ = committed_ = true;
+}
+
+void AtomicOutputFile::discard() noexcept {
+  if (done_) return;
+  done_ = true;
+  if (out_.is_open()) out_.close();
+  if (!in_place_) ::unlink(temp_.c_str());
+  unregister_temporary(registry_slot_);
+}
+
+void write_output_file(const std::string& path, const std::string& text, const char* what) {
+  try {
+    AtomicOutputFile out(path);
+    out.stream() << text;
+    out.commit();
+  } catch (const OutputError& e) {
+    throw OutputError(e.path, fmt::format("{} ({})", e.message, what));
+  }
+}
+
+}  // namespace vbsim
