@@ -1,0 +1,31 @@
+// OBJ validation before assimp reads a file: a strict check of the Wavefront
+// OBJ statements vbsim's scenes use, so that assimp only ever sees files it
+// reads whole and in the meaning the file states. A line is blank, a comment
+// ('#' first), or one of:
+//   v X Y Z [W | R G B]   vn X Y Z   vt U [V [W]]
+//   f R R R ...  (R = i, i/t, i//n or i/t/n, the same form throughout a face)
+//   l R R ...    p R ...   o NAME   g NAME...   s off|on|N   usemtl NAME   mtllib FILE...
+// Numbers are plain decimals ([+-]digits[.digits][e[+-]digits]); indices are
+// non-zero integers naming an element defined before (negative: counted back
+// from the last one). Anything else (other statements, NUL bytes, a line
+// continued with '\', a line over 64 KiB) is an error naming the line.
+// assimp reads no other file: material libraries are not opened (materials
+// only name the meshes they start, which numbering keeps; docs/scene.md).
+#pragma once
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+namespace vbsim {
+
+struct ObjSummary {
+  uint64_t vertices = 0;
+  uint64_t faces = 0;      ///< `f` statements
+  uint64_t triangles = 0;  ///< what the faces give after triangulation (n - 2 per face of n >= 3)
+};
+
+/// Validates the OBJ text `bytes`; throws SceneError "scene 'PATH': OBJ line
+/// N: what is wrong".
+ObjSummary validate_obj(std::string_view bytes, const std::string& path);
+
+}  // namespace vbsim
