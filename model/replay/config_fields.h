@@ -3,8 +3,10 @@
 // never read is reported as an unknown field. Errors are ConfigError
 // "FILE: field 'a.b': reason".
 #pragma once
+#include <cfloat>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <string>
 
@@ -37,32 +39,31 @@ class Fields {
     const auto it = j_.find(key);
     return it == j_.end() ? nullptr : &*it;
   }
+  // Every number is checked in the type it is stored in: a float32 field
+  // refuses a value that overflows to inf or that is not zero but rounds to
+  // zero; an integer field refuses a value outside its type's range (no
+  // wrap-around, no truncation of 2.5).
   void number(const std::string& key, float& out) {
     if (const auto* v = get(key)) {
-      if (!v->is_number() || !std::isfinite(v->get<double>())) fail(file_, path(key), "must be a finite number");
-      out = v->get<float>();
+      const double x = finite_number(*v, key);
+      const float f = static_cast<float>(x);
+      if (!std::isfinite(f))
+        fail(file_, path(key), fmt::format("{} is out of range for a float32 (largest {:g})", v->dump(), FLT_MAX));
+      if (f == 0.0f && x != 0.0)
+        fail(file_, path(key), fmt::format("{} is too small for a float32: it rounds to 0", v->dump()));
+      out = f;
     }
   }
   void integer(const std::string& key, int& out) {
-    if (const auto* v = get(key)) {
-      if (!v->is_number_integer()) fail(file_, path(key), "must be an integer");
-      out = v->get<int>();
-    }
+    if (const auto* v = get(key))
+      out = static_cast<int>(integer_in(*v, key, std::numeric_limits<int>::min(), std::numeric_limits<int>::max()));
   }
   void number(const std::string& key, double& out) {
-    if (const auto* v = get(key)) {
-      if (!v->is_number() || !std::isfinite(v->get<double>())) fail(file_, path(key), "must be a finite number");
-      out = v->get<double>();
-    }
+    if (const auto* v = get(key)) out = finite_number(*v, key);
   }
   /// An integer in [lo, hi].
   void integer(const std::string& key, uint32_t& out, uint32_t lo, uint32_t hi) {
-    if (const auto* v = get(key)) {
-      if (!v->is_number_integer()) fail(file_, path(key), "must be an integer");
-      const int64_t x = v->get<int64_t>();
-      if (x < lo || x > hi) fail(file_, path(key), fmt::format("must be in {}..{}", lo, hi));
-      out = static_cast<uint32_t>(x);
-    }
+    if (const auto* v = get(key)) out = static_cast<uint32_t>(integer_in(*v, key, lo, hi));
   }
   void boolean(const std::string& key, bool& out) {
     if (const auto* v = get(key)) {
@@ -80,6 +81,21 @@ class Fields {
   const std::string& file() const { return file_; }
 
  private:
+  double finite_number(const nlohmann::json& v, const std::string& key) const {
+    if (!v.is_number() || !std::isfinite(v.get<double>())) fail(file_, path(key), "must be a finite number");
+    return v.get<double>();
+  }
+  /// The integer `v` when lo <= v <= hi, read without wrapping (JSON keeps
+  /// integers above 2^63 - 1 unsigned).
+  int64_t integer_in(const nlohmann::json& v, const std::string& key, int64_t lo, int64_t hi) const {
+    if (!v.is_number_integer()) fail(file_, path(key), fmt::format("must be an integer, got {}", v.dump()));
+    const bool is_unsigned = v.is_number_unsigned();
+    const bool above = is_unsigned ? v.get<uint64_t>() > static_cast<uint64_t>(hi) : v.get<int64_t>() > hi;
+    const bool below = is_unsigned ? lo > 0 && v.get<uint64_t>() < static_cast<uint64_t>(lo) : v.get<int64_t>() < lo;
+    if (above || below) fail(file_, path(key), fmt::format("{} is out of range: must be in {}..{}", v.dump(), lo, hi));
+    return v.is_number_unsigned() ? static_cast<int64_t>(v.get<uint64_t>()) : v.get<int64_t>();
+  }
+
   const nlohmann::json& j_;
   std::string file_, prefix_;
   std::map<std::string, bool> seen_;
