@@ -1,12 +1,19 @@
 #!/usr/bin/env bash
 # Installs vbsim's Debian dependencies (only what is missing) and builds it.
 # Idempotent: a second run installs nothing and rebuilds only what changed.
+#   VBSIM_BUILD_DIR   build directory (default build/)
+#   VBSIM_CMAKE_ARGS  extra CMake options for a new build directory
+#                     (scripts/test.sh --sanitize, scripts/fuzz.sh set them)
+#   VBSIM_FUZZ=1      also install clang and its libFuzzer runtime
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 
 packages=(build-essential cmake pkg-config libsystemc-dev catch2 libfmt-dev nlohmann-json3-dev
           libembree-dev libassimp-dev libcli11-dev libgmp-dev libstb-dev
           python3-numpy python3-matplotlib)
+if [ "${VBSIM_FUZZ:-0}" = 1 ]; then
+  packages+=(clang libclang-rt-dev)
+fi
 
 missing=()
 for p in "${packages[@]}"; do
@@ -26,7 +33,8 @@ log="$build/setup-configure.log"
 # Build quietly; show the log only when something fails.
 if [ ! -f "$build/CMakeCache.txt" ]; then
   echo "vbsim setup: configuring and building in $build (first run takes a few minutes)" >&2
-  cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release > "$log" 2>&1 || { cat "$log" >&2; exit 1; }
+  # shellcheck disable=SC2086  # VBSIM_CMAKE_ARGS is a list of options
+  cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release ${VBSIM_CMAKE_ARGS:-} > "$log" 2>&1 || { cat "$log" >&2; exit 1; }
 fi
 blog="$build/setup-build.log"
 cmake --build "$build" -j "$(nproc)" > "$blog" 2>&1 || { cat "$blog" >&2; exit 1; }

@@ -77,7 +77,7 @@ class ObjChecker {
       numbers(w);
       ++normals_;
     } else if (key == "vt") {
-      if (args < 1 || args > 3) fail("'vt' takes 1 to 3 numbers");
+      if (args < 2 || args > 3) fail("'vt' takes 2 or 3 numbers");
       numbers(w);
       ++texcoords_;
     } else if (key == "f" || key == "l" || key == "p") {

@@ -2,7 +2,7 @@
 // OBJ statements vbsim's scenes use, so that assimp only ever sees files it
 // reads whole and in the meaning the file states. A line is blank, a comment
 // ('#' first), or one of:
-//   v X Y Z [W | R G B]   vn X Y Z   vt U [V [W]]
+//   v X Y Z [W | R G B]   vn X Y Z   vt U V [W]
 //   f R R R ...  (R = i, i/t, i//n or i/t/n, the same form throughout a face)
 //   l R R ...    p R ...   o NAME   g NAME...   s off|on|N   usemtl NAME   mtllib FILE...
 // Numbers are plain decimals ([+-]digits[.digits][e[+-]digits]); indices are
