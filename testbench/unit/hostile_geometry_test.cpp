@@ -98,9 +98,9 @@ void add_children(std::vector<TraceRay>& rays, const Scene& scene, const Bvh& bv
   }
 }
 
-}  // namespace
-
-TEST_CASE("hostile geometry: every ray answered and counted, camera rays exactly", "[hostile]") {
+/// Every method whose name passes `wanted`, on every hostile case, tester and hit-point mode.
+template <class Wanted>
+void replay_hostile_cases(Wanted wanted) {
   for (const HostileCase& hc : hostile_cases()) {
     INFO(hc.name);
     const std::string path = scratch("scene.ply");
@@ -114,6 +114,7 @@ TEST_CASE("hostile geometry: every ray answered and counted, camera rays exactly
     add_children(rays, scene, bvh);
     fill_expect(rays, scene, bvh);
     for (const std::string& method : method_names()) {
+      if (!wanted(method)) continue;
       for (const TesterKind tester : {TesterKind::ThreeHalfPlane, TesterKind::MollerTrumbore, TesterKind::PbrtWatertight})
         for (const HitPointMode hp : {HitPointMode::Given, HitPointMode::Ray, HitPointMode::Barycentric}) {
           INFO(method << " tester " << static_cast<int>(tester) << " hitpoint " << hit_point_mode_name(hp));
@@ -140,6 +141,23 @@ TEST_CASE("hostile geometry: every ray answered and counted, camera rays exactly
         }
     }
   }
+}
+
+bool is_offset_method(const std::string& m) { return m.rfind("offset-", 0) == 0; }
+
+}  // namespace
+
+TEST_CASE("hostile geometry: every ray answered and counted, camera rays exactly", "[hostile]") {
+  replay_hostile_cases([](const std::string& m) { return !is_offset_method(m); });
+}
+
+// The offset methods on children of degenerate, huge and denormal parents: a
+// zero or non-finite geometric normal reaches offset_adaptive's integer ulp
+// offset (origin_offsets.cpp negates INT_MIN there: undefined behaviour that the
+// sanitizer build reports until the offset methods give such rays a defined
+// outcome).
+TEST_CASE("hostile geometry: the offset methods answer and count children of degenerate parents", "[hostile][offsets]") {
+  replay_hostile_cases(is_offset_method);
 }
 
 TEST_CASE("hostile geometry: non-finite and empty scenes are errors naming the file", "[hostile]") {
