@@ -56,6 +56,13 @@ void read_memory(Fields& parent, MemoryConfig& m) {
   if (!(m.dram_bytes_per_cycle > 0 && m.dram_bytes_per_cycle <= 4096))
     fail(parent.file(), field + ".dram_bytes_per_cycle", "must be in (0, 4096]");
   f.integer("dram_max_outstanding", m.dram_max_outstanding, 1, 65536);
+  f.name("tlm", [&](const std::string& s) {
+    if (s == "lt") m.tlm = TlmStyle::LooselyTimed;
+    else if (s == "at") m.tlm = TlmStyle::ApproximatelyTimed;
+    else return false;
+    return true;
+  });
+  f.integer("at_lookahead_cycles", m.at_lookahead_cycles, 1, 1000000);
   check_cache(parent.file(), field + ".l1", m.l1);
   check_cache(parent.file(), field + ".l2", m.l2);
 }
@@ -167,7 +174,9 @@ nlohmann::json hw_config_json(const HwConfig& c) {
             {"l2", cache(m.l2)},
             {"dram_latency", m.dram_latency},
             {"dram_bytes_per_cycle", m.dram_bytes_per_cycle},
-            {"dram_max_outstanding", m.dram_max_outstanding}}},
+            {"dram_max_outstanding", m.dram_max_outstanding},
+            {"tlm", tlm_style_name(m.tlm)},
+            {"at_lookahead_cycles", m.at_lookahead_cycles}}},
           {"sim",
            {{"quantum_cycles", c.quantum_cycles},
             {"latency_bucket_cycles", c.latency_bucket_cycles},

@@ -8,7 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "hw/memory_port.h"
+#include "hw/memory_config.h"
 
 namespace vbsim::hw {
 

@@ -29,16 +29,16 @@ struct ReplayArgs {
   std::string hits;
   std::string mode = "functional";
   std::string preset;  // cycle mode: hardware preset (default: the config's, else small)
-  std::string vcd, timeline;
-  uint64_t timeline_start = 0, timeline_cycles = 2000;
+  std::string vcd, timeline, trace_scope;
+  uint64_t timeline_start = 0, timeline_cycles = 2000, vcd_start = 0, vcd_cycles = 2000;
   bool quiet = false;
   MethodOptions method;
 };
 
 /// A one-line progress report on stderr, rewritten in place.
 void print_progress(const hw::CycleEngine& e) {
-  const hw::HwCounters& c = e.counters();
-  fmt::print(stderr, "\r  cycle {:>12}   rays done {:>10}   in flight {:>6}", c.cycles, c.rays, e.rays_in_flight());
+  fmt::print(stderr, "\r  cycle {:>12}   rays done {:>10}   in flight {:>6}", e.last_handled(),
+             e.rays_done(), e.rays_in_flight());
 }
 
 ReplayStats run_cycle_mode(const ReplayArgs& a, const ReplayOptions& opt, TraceSource& source, const SceneAndBvh& sb,
@@ -47,13 +47,11 @@ ReplayStats run_cycle_mode(const ReplayArgs& a, const ReplayOptions& opt, TraceS
   config["hw"] = hw::hw_config_json(cfg);
   source.set_triangle_count(sb.scene.size());
   hw::CycleRunOptions run;
-  run.drive.vcd = a.vcd;
-  run.drive.stop = &g_stop;
+  run.stop = &g_stop;
   const bool progress = !a.quiet && isatty(STDERR_FILENO);
-  if (progress) run.drive.progress = print_progress;
-  run.timeline = a.timeline;
-  run.timeline_first = a.timeline_start;
-  run.timeline_cycles = a.timeline_cycles;
+  if (progress) run.progress = print_progress;
+  run.vcd = {a.vcd, a.vcd_start, a.vcd_cycles, a.trace_scope};
+  run.timeline = {a.timeline, a.timeline_start, a.timeline_cycles, a.trace_scope};
   // Rays finish out of order; the hits file lists them in trace order, as the functional replay does.
   std::unique_ptr<hw::TraceOrderBuffer> ordered;
   if (hits) ordered = std::make_unique<hw::TraceOrderBuffer>(*hits);
@@ -128,7 +126,13 @@ void add_replay_command(CLI::App& app) {
   cmd->add_option("--mode", args->mode, "replay mode: functional (untimed) or cycle (the SystemC hardware model)")
       ->capture_default_str();
   cmd->add_option("--preset", args->preset, "cycle mode: hardware preset, small or large [the config's hw.preset, else small]");
-  cmd->add_option("--vcd", args->vcd, "cycle mode: write a VCD of the key values here");
+  cmd->add_option("--vcd", args->vcd,
+                  "cycle mode: write a VCD of per-instance values (busy slots, operations in flight, L1 misses) here");
+  cmd->add_option("--vcd-start", args->vcd_start, "cycle mode: first cycle of the VCD window")->capture_default_str();
+  cmd->add_option("--vcd-cycles", args->vcd_cycles, "cycle mode: cycles in the VCD window")->capture_default_str();
+  cmd->add_option("--trace-scope", args->trace_scope,
+                  "cycle mode: record only the instances whose hierarchical name starts with this "
+                  "(e.g. accelerator.core_3) in the VCD and the timeline");
   cmd->add_option("--timeline", args->timeline, "cycle mode: write a Chrome trace-event JSON of a cycle window here");
   cmd->add_option("--timeline-start", args->timeline_start, "cycle mode: first cycle of the timeline window")
       ->capture_default_str();

@@ -1,11 +1,10 @@
-// make_memory: the memory a configuration describes, and the checks of the
-// configuration (errors name the field the engine's config parser fills).
+// check_memory_config: the checks of the memory configuration (errors name the
+// field the engine's config parser fills), and the TLM style's names.
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
-#include "hw/memory_hierarchy.h"
-#include "hw/memory_port.h"
+#include "hw/memory_config.h"
 
 namespace vbsim::hw {
 
@@ -37,6 +36,8 @@ void check_cache(const CacheConfig& c, const std::string& name, uint32_t min_hit
 
 }  // namespace
 
+const char* tlm_style_name(TlmStyle s) { return s == TlmStyle::LooselyTimed ? "lt" : "at"; }
+
 void check_memory_config(const MemoryConfig& config, int cores) {
   if (config.ideal) return;
   if (cores < 1) throw std::invalid_argument("cores: must be at least 1, got " + std::to_string(cores));
@@ -52,12 +53,6 @@ void check_memory_config(const MemoryConfig& config, int cores) {
   if (config.l2.line_bytes / bpc > 1048576.0)
     reject("dram_bytes_per_cycle", "too small: one line would take more than 2^20 cycles");
   if (config.dram_max_outstanding == 0) reject("dram_max_outstanding", "must be at least 1");
-}
-
-std::unique_ptr<MemoryPort> make_memory(const MemoryConfig& config, int cores) {
-  if (config.ideal) return std::make_unique<IdealMemory>(config.ideal_latency);
-  check_memory_config(config, cores);
-  return std::make_unique<MemoryHierarchy>(config, cores);
 }
 
 }  // namespace vbsim::hw
