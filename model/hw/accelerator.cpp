@@ -115,17 +115,13 @@ tlm::tlm_initiator_socket<>& Accelerator::memory_socket() {
 void Accelerator::set_tracing(VcdRecorder* vcd, TimelineRecorder* timeline) {
   vcd_ = vcd;
   timeline_ = timeline;
-  for (RayTestCore& c : cores_) {
-    if (PipelineUnit* u = c.builtin_box()) u->set_tracing(vcd, timeline);
-    if (PipelineUnit* u = c.builtin_triangle()) u->set_tracing(vcd, timeline);
-    if (PipelineUnit* u = c.builtin_avoidance()) u->set_tracing(vcd, timeline);
-    if (L1Cache* l1 = c.l1()) l1->set_tracing(vcd, timeline);
-  }
+  for (RayTestCore& c : cores_)
+    if (L1Cache* l1 = c.l1()) l1->set_tracing(vcd);
   if (l2_) l2_->set_tracing(timeline);
 }
 
 EngineParts Accelerator::engine_parts() {
-  EngineParts p{config_, replayer_, bvh_, *source_, *dispatcher_, *sink_, {}};
+  EngineParts p{config_, replayer_, bvh_, *source_, *dispatcher_, dynamic_cast<Dispatcher*>(dispatcher_), *sink_, {}};
   bool all_l1 = true, all_ideal = ideal_ != nullptr;
   for (RayTestCore& c : cores_) {
     MemoryReadIf* mem = c.memory.operator->();

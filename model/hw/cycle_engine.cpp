@@ -9,45 +9,47 @@
 #include "datapath/bvh_stepper.h"
 #include "datapath/testers.h"
 #include "hw/bvh_address_map.h"
+#include "hw/dispatcher.h"
 #include "hw/event_wheel.h"
 #include "hw/ideal_memory.h"
 #include "hw/l1_cache.h"
 #include "hw/pipeline_units.h"
+#include "hw/ray_source.h"
 #include "hw/ray_test_core.h"
+#include "hw/result_sink.h"
+
+#include <systemc>
 
 namespace vbsim::hw {
 
 namespace {
 
-// Event ids: slots 0 .. n-1, the source n. Events of one cycle are handled in
-// the order they were scheduled (hw/event_wheel.h).
-constexpr uint32_t kMaxSlots = (1u << 24) - 2;
+// Event ids: slots 0 .. n-1 (a slot's next step), the source n, and n + 1 + s
+// for slot s resumed after a read whose data came later (approximately timed
+// memory). Events of one cycle are handled in the order they were scheduled
+// (hw/event_wheel.h).
+constexpr uint32_t kMaxSlots = (1u << 23) - 2;
 
-/// The number of event ids for `cfg`: its slots and the source.
-uint32_t event_ids(const HwConfig& cfg) {
+/// The number of slots of `cfg`.
+uint32_t slot_count(const HwConfig& cfg) {
   const uint64_t slots = uint64_t{cfg.cores} * cfg.slots_per_core;
   if (slots > kMaxSlots) throw std::runtime_error("hw: too many slots");
-  return static_cast<uint32_t>(slots + 1);
-}
-
-/// One operation of a core's unit: the built-in module directly, else through its interface.
-__attribute__((always_inline)) inline UnitSchedule schedule_on(PipelineUnit* builtin, PipelineIf* any,
-                                                              uint64_t ready, uint64_t now) {
-  return builtin ? builtin->schedule_inline(ready, now) : any->schedule(ready, now);
+  return static_cast<uint32_t>(slots);
 }
 
 /// `Memory` is the memory modules' type when every core's port reaches a
-/// built-in one (L1Cache, IdealMemory: their reads are then direct calls),
-/// else MemoryReadIf.
+/// built-in one (L1Cache, IdealMemory) and every unit is built-in: reads and
+/// unit operations are then direct calls. Otherwise MemoryReadIf, and every
+/// unit is reached through its interface.
 template <class Tester, class Memory>
 class Engine final : public CycleEngine {
  public:
   explicit Engine(const EngineParts& p)
       : cfg_(p.config), replayer_(p.replayer), bvh_(p.bvh), map_(p.bvh, p.config.address_base), source_(p.source),
-        dispatcher_(p.dispatcher), sink_(p.sink), cores_(p.cores), ideal_(p.builtin_ideal),
+        dispatcher_(p.dispatcher), builtin_dispatcher_(p.builtin_dispatcher), sink_(p.sink), cores_(p.cores), ideal_(p.builtin_ideal),
         avoidance_in_use_(p.avoidance_in_use), timeline_(p.timeline), vcd_(p.vcd) {
     check_traversal_depth(p.bvh);
-    const uint32_t slots = source_id_;
+    const uint32_t slots = source_id_;  // the slots' ids are 0 .. slots - 1
     for (const CoreBinding& c : cores_) {
       l1s_.push_back(c.core->l1());
       free_count_.push_back(static_cast<uint32_t>(c.core->free_slots.size()));
@@ -56,15 +58,7 @@ class Engine final : public CycleEngine {
     for (uint32_t i = 0; i < slots; ++i)
       slots_.emplace_back(p.bvh, p.replayer.filter(), static_cast<int>(p.config.stack_depth),
                           i / p.config.slots_per_core);
-    if (timeline_)
-      for (uint32_t i = 0; i < slots; ++i)
-        slot_track_.push_back(timeline_->track(cores_[i / cfg_.slots_per_core].core->name(),
-                                               "slot " + std::to_string(i % cfg_.slots_per_core)));
-    if (vcd_) {
-      for (const CoreBinding& c : cores_) core_busy_signal_.push_back(vcd_->signal(c.core->name(), "busy_slots"));
-      rays_done_signal_ = vcd_->signal("accelerator", "rays_done");
-      in_flight_signal_ = vcd_->signal("accelerator", "rays_in_flight");
-    }
+    if (tracing_) set_up_tracing();
   }
 
   void start() override { start_emission(0); }
@@ -76,8 +70,9 @@ class Engine final : public CycleEngine {
       last_handled_ = at;
       const uint32_t next = events_.peek_next();
       if (next < source_id_) prefetch_slot(slots_[next]);
-      if (id == source_id_) source_ready(at);
-      else step(id, at);
+      if (id < source_id_) step(id, at);
+      else if (id == source_id_) source_ready(at);
+      else continue_parked(id - source_id_ - 1, at);
     }
   }
   uint64_t last_handled() const override { return last_handled_; }
@@ -92,7 +87,7 @@ class Engine final : public CycleEngine {
   uint64_t waiting_for_memory() const override { return parked_; }
   void resume(uint32_t slot, uint64_t ready) override {
     --parked_;
-    events_.schedule(ready, slot);  // the step's second half (s.parked) runs at `ready`
+    events_.schedule(ready, source_id_ + 1 + slot);  // the step's second half runs at `ready`
   }
   std::string slot_report(size_t max_slots) const override;
 
@@ -125,6 +120,22 @@ class Engine final : public CycleEngine {
     for (size_t at = 0; at < Slot::kNodeStepBytes; at += 64) __builtin_prefetch(p + at);
   }
 
+  static constexpr bool kBuiltinUnits = !std::is_same_v<Memory, MemoryReadIf>;
+  // One operation of a core's unit: the built-in module directly, or through its interface.
+  __attribute__((always_inline)) static UnitSchedule box_op(const CoreBinding& c, uint64_t ready, uint64_t now) {
+    if constexpr (kBuiltinUnits) return c.box_builtin->schedule_inline(ready, now);
+    else return c.box->schedule(ready, now);
+  }
+  __attribute__((always_inline)) static UnitSchedule triangle_op(const CoreBinding& c, uint64_t ready, uint64_t now) {
+    if constexpr (kBuiltinUnits) return c.triangle_builtin->schedule_inline(ready, now);
+    else return c.triangle->schedule(ready, now);
+  }
+  __attribute__((always_inline)) static UnitSchedule avoidance_op(const CoreBinding& c, uint64_t ready,
+                                                                  uint64_t now) {
+    if constexpr (kBuiltinUnits) return c.avoidance_builtin->schedule_inline(ready, now);
+    else return c.avoidance->schedule(ready, now);
+  }
+
   /// Slot `id`'s read of `bytes` at `addr`, issued at `now`.
   __attribute__((always_inline)) uint64_t read(const Slot& s, uint32_t id, uint64_t addr, uint32_t bytes,
                                               uint64_t now) {
@@ -151,9 +162,70 @@ class Engine final : public CycleEngine {
     events_.schedule(at, id);
   }
 
-  void record(const char* name, uint32_t id, uint64_t start, uint64_t end) {
+  // ---- tracing (VCD and timeline; out of line, behind one flag a step) ----
+
+  enum Unit { kBox, kTriangle, kAvoidance, kUnits };
+  /// Per core: the VCD signal (operations in flight) and timeline track of each
+  /// unit, its busy-slot signal and its memory's track.
+  struct CoreTrace {
+    uint32_t unit_signal[kUnits], unit_track[kUnits];
+    uint32_t busy_signal, memory_track;
+  };
+  static const char* instance_name(sc_core::sc_interface* iface, const std::string& fallback) {
+    const auto* o = dynamic_cast<const sc_core::sc_object*>(iface);
+    return o ? o->name() : fallback.c_str();
+  }
+  void set_up_tracing() {
+    static const char* kSignal = "ops_in_flight";
+    for (const CoreBinding& c : cores_) {
+      const std::string core = c.core->name();
+      const std::string units[kUnits] = {instance_name(c.box, core + ".box_unit"),
+                                         instance_name(c.triangle, core + ".triangle_tester"),
+                                         instance_name(c.avoidance, core + ".avoidance_unit")};
+      CoreTrace t{};
+      for (int u = 0; u < kUnits; ++u) {
+        t.unit_signal[u] = vcd_ ? vcd_->signal(units[u], kSignal) : VcdRecorder::kNoSignal;
+        const std::string thread = units[u].substr(units[u].rfind('.') + 1);
+        t.unit_track[u] = timeline_ ? timeline_->track(core, thread) : TimelineRecorder::kNoTrack;
+      }
+      t.busy_signal = vcd_ ? vcd_->signal(core, "busy_slots") : VcdRecorder::kNoSignal;
+      t.memory_track = timeline_ ? timeline_->track(core, "memory reads") : TimelineRecorder::kNoTrack;
+      core_trace_.push_back(t);
+    }
+    if (timeline_)
+      for (uint32_t i = 0; i < source_id_; ++i)
+        slot_track_.push_back(timeline_->track(cores_[i / cfg_.slots_per_core].core->name(),
+                                               "slot " + std::to_string(i % cfg_.slots_per_core)));
+    if (vcd_) {
+      rays_done_signal_ = vcd_->signal("accelerator", "rays_done");
+      in_flight_signal_ = vcd_->signal("accelerator", "rays_in_flight");
+    }
+  }
+  /// Slot `id`'s step `name` over [start, end), whose read (if any) took [asked, ready).
+  __attribute__((noinline, cold)) void trace_step(uint32_t id, const char* name, uint64_t start, uint64_t end,
+                                                  uint64_t asked, uint64_t ready) {
     if (!timeline_) return;
-    timeline_->add(slot_track_[id], name, start, end, slots_[id].tr.id);
+    const Slot& s = slots_[id];
+    timeline_->add(slot_track_[id], name, start, end, s.tr.id);
+    if (ready > asked) timeline_->add(core_trace_[s.core].memory_track, name, asked, ready, s.tr.id);
+  }
+  /// One operation of a unit of core `core`.
+  __attribute__((noinline, cold)) void trace_op(uint32_t id, Unit unit, const UnitSchedule& op) {
+    static const char* kNames[kUnits] = {"box", "triangle", "avoidance"};
+    const Slot& s = slots_[id];
+    const CoreTrace& t = core_trace_[s.core];
+    if (vcd_) {
+      vcd_->add(t.unit_signal[unit], op.issue, +1);
+      vcd_->add(t.unit_signal[unit], op.done, -1);
+    }
+    if (timeline_) timeline_->add(t.unit_track[unit], kNames[unit], op.issue, op.done, s.tr.id);
+  }
+  /// A ray entering (+1) or leaving (-1) a slot of core `core` at `at`.
+  __attribute__((noinline, cold)) void trace_occupancy(uint32_t core, uint64_t at, int delta) {
+    if (!vcd_) return;
+    vcd_->add(core_trace_[core].busy_signal, at, delta);
+    vcd_->add(in_flight_signal_, at, delta);
+    if (delta < 0) vcd_->add(rays_done_signal_, at, 1);
   }
 
   // ---- ray source and dispatcher ----
@@ -171,7 +243,7 @@ class Engine final : public CycleEngine {
 
   /// The emitted ray is ready at `at`: dispatch it, or hold it until a slot frees.
   void source_ready(uint64_t at) {
-    const int core = dispatcher_.pick(free_count_.data(), static_cast<uint32_t>(cores_.size()));
+    const int core = pick_core();
     if (core < 0) {
       blocked_ = true;
       blocked_since_ = at;
@@ -179,6 +251,13 @@ class Engine final : public CycleEngine {
     }
     dispatch(static_cast<uint32_t>(core), at);
     start_emission(at);
+  }
+
+  /// The dispatcher's choice of a core with a free slot, or -1.
+  int pick_core() {
+    const uint32_t n = static_cast<uint32_t>(cores_.size());
+    return builtin_dispatcher_ ? builtin_dispatcher_->Dispatcher::pick(free_count_.data(), n)
+                               : dispatcher_.pick(free_count_.data(), n);
   }
 
   void dispatch(uint32_t core_index, uint64_t at) {
@@ -196,11 +275,11 @@ class Engine final : public CycleEngine {
     KindStats& ks = replayer_.stats().by_kind[static_cast<int>(s.tr.kind)];
     s.pending = s.stepper.begin(s.er.ray, replayer_.any_hit(s.tr, s.er), ks.candidates, ks.traversal);
     // The root box test: bounds latched with the ray.
-    const UnitSchedule box = schedule_on(core.box_builtin, core.box, at, at);
-    record("box", id, box.issue, box.done);
-    if (vcd_) {
-      vcd_->add(core_busy_signal_[core_index], at, +1);
-      vcd_->add(in_flight_signal_, at, +1);
+    const UnitSchedule box = box_op(core, at, at);
+    if (__builtin_expect(tracing_, 0)) {
+      trace_occupancy(core_index, at, +1);
+      trace_step(id, "root box", box.issue, box.done, 0, 0);
+      trace_op(id, kBox, box);
     }
     schedule_step(box.done, id);
   }
@@ -210,7 +289,6 @@ class Engine final : public CycleEngine {
   void step(uint32_t id, uint64_t now) {
     Slot& s = slots_[id];
     const CoreBinding& core = cores_[s.core];
-    if (__builtin_expect(s.parked, 0)) return continue_parked(s, core, id, now);
     switch (s.pending.kind) {
       case StepRequest::Node: {
         // The box test below waits for the node record: ask for it before the
@@ -241,45 +319,49 @@ class Engine final : public CycleEngine {
   // Each step's part after its read: the read was issued at `asked`, its data
   // are there at `ready`, and the event being handled is at `now`.
 
-  void node_arrived(Slot& s, const CoreBinding& core, uint32_t id, uint64_t asked, uint64_t ready, uint64_t now) {
+  __attribute__((always_inline)) void node_arrived(Slot& s, const CoreBinding& core, uint32_t id, uint64_t asked, uint64_t ready, uint64_t now) {
     CoreCounters& cc = core.core->counters;
     ++cc.node_fetches;
     cc.memory_wait_cycles += ready - asked;
-    const uint64_t end = schedule_on(core.box_builtin, core.box, ready, now).done;
-    record("node", id, asked, end);
+    const UnitSchedule box = box_op(core, ready, now);
+    if (__builtin_expect(tracing_, 0)) {
+      trace_step(id, "node", asked, box.done, asked, ready);
+      trace_op(id, kBox, box);
+    }
     s.pending = s.stepper.node_step();
-    schedule_step(end, id);
+    schedule_step(box.done, id);
   }
 
-  void leaf_arrived(Slot& s, const CoreBinding& core, uint32_t id, uint64_t asked, uint64_t ready, uint64_t now) {
+  __attribute__((always_inline)) void leaf_arrived(Slot& s, const CoreBinding& core, uint32_t id, uint64_t asked, uint64_t ready, uint64_t now) {
     CoreCounters& cc = core.core->counters;
     const uint32_t first = s.pending.index, count = s.pending.count;
     ++cc.leaf_fetches;
     cc.memory_wait_cycles += ready - asked;
     uint64_t end = ready, next_ready = ready;
     for (uint32_t i = 0; i < count; ++i) {
-      const UnitSchedule tri = schedule_on(core.triangle_builtin, core.triangle, next_ready, now);
+      const UnitSchedule tri = triangle_op(core, next_ready, now);
       next_ready = tri.issue + 1;  // a slot hands its pipelines one triangle per cycle
       end = std::max(end, tri.done);
+      if (__builtin_expect(tracing_, 0)) trace_op(id, kTriangle, tri);
       const TriangleStepOutcome out = s.stepper.triangle_step(first + i);
       if (out.suspect && avoidance_in_use_) {
-        const UnitSchedule a = schedule_on(core.avoidance_builtin, core.avoidance, tri.done, now);
+        const UnitSchedule a = avoidance_op(core, tri.done, now);
         ++cc.avoidance_ops_by_kind[static_cast<int>(s.tr.kind)];
-        record("avoidance", id, a.issue, a.done);
+        if (__builtin_expect(tracing_, 0)) trace_op(id, kAvoidance, a);
         end = std::max(end, a.done);
       }
       if (out.stop) break;
     }
-    record("leaf", id, asked, end);
+    if (__builtin_expect(tracing_, 0)) trace_step(id, "leaf", asked, end, asked, ready);
     s.pending = s.stepper.leaf_done();
     schedule_step(end, id);
   }
 
-  void refill_arrived(Slot& s, const CoreBinding& core, uint32_t id, uint64_t asked, uint64_t ready) {
+  __attribute__((always_inline)) void refill_arrived(Slot& s, const CoreBinding& core, uint32_t id, uint64_t asked, uint64_t ready) {
     CoreCounters& cc = core.core->counters;
     ++cc.refill_reads;
     cc.refill_wait_cycles += ready - asked;
-    record("refill", id, asked, ready);
+    if (__builtin_expect(tracing_, 0)) trace_step(id, "refill", asked, ready, asked, ready);
     s.pending = s.stepper.refilled();
     schedule_step(ready, id);
   }
@@ -291,8 +373,10 @@ class Engine final : public CycleEngine {
     ++parked_;
   }
 
-  /// A parked slot's data are there at `now` (resume() scheduled it).
-  void continue_parked(Slot& s, const CoreBinding& core, uint32_t id, uint64_t now) {
+  /// Parked slot `id`'s data are there at `now` (resume() scheduled it).
+  void continue_parked(uint32_t id, uint64_t now) {
+    Slot& s = slots_[id];
+    const CoreBinding& core = cores_[s.core];
     s.parked = false;
     switch (s.pending.kind) {
       case StepRequest::Node: return node_arrived(s, core, id, s.requested, now, now);
@@ -313,16 +397,11 @@ class Engine final : public CycleEngine {
     ++done_;
     core.core->free_slots.push_back(id);
     ++free_count_[s.core];
-    if (vcd_) {
-      vcd_->add(core_busy_signal_[s.core], now, -1);
-      vcd_->add(in_flight_signal_, now, -1);
-      vcd_->add(rays_done_signal_, now, +1);
-    }
+    if (__builtin_expect(tracing_, 0)) trace_occupancy(s.core, now, -1);
     if (blocked_) {  // the source's held ray takes a slot now
       blocked_ = false;
       source_.held(blocked_since_, now);
-      const int c = dispatcher_.pick(free_count_.data(), static_cast<uint32_t>(cores_.size()));
-      dispatch(static_cast<uint32_t>(c), now);
+      dispatch(static_cast<uint32_t>(pick_core()), now);
       start_emission(now);
     }
   }
@@ -331,9 +410,10 @@ class Engine final : public CycleEngine {
   FunctionalReplayer& replayer_;
   const Bvh& bvh_;
   BvhAddressMap map_;
-  RaySourceIf& source_;
+  RaySource& source_;
   DispatchIf& dispatcher_;
-  ResultSinkIf& sink_;
+  Dispatcher* builtin_dispatcher_;
+  ResultSink& sink_;
   std::vector<CoreBinding> cores_;
   std::vector<L1Cache*> l1s_;         // by core: the built-in L1 (Memory = L1Cache)
   std::vector<uint32_t> free_count_;  // by core: free slots (the dispatcher's view)
@@ -342,15 +422,16 @@ class Engine final : public CycleEngine {
   // Per kind (0: a leaf's triangles, 1: a node), the modelled address of record `i`: base + stride * i.
   const uint64_t model_base_[2] = {map_.triangle(0), map_.node(0)};
   const uint64_t model_stride_[2] = {BvhAddressMap::kTriangleBytes, BvhAddressMap::kNodeBytes};
-  EventWheel events_{event_ids(cfg_)};
-  uint32_t source_id_ = event_ids(cfg_) - 1;
+  uint32_t source_id_ = slot_count(cfg_);
+  EventWheel events_{2 * source_id_ + 1};
   std::vector<Slot> slots_;
   bool blocked_ = false, stopped_ = false, source_done_ = false;
   uint64_t blocked_since_ = 0, in_flight_ = 0, fed_ = 0, done_ = 0, parked_ = 0, last_handled_ = 0;
   TimelineRecorder* timeline_;
-  std::vector<uint32_t> slot_track_;
   VcdRecorder* vcd_;
-  std::vector<uint32_t> core_busy_signal_;
+  bool tracing_ = timeline_ || vcd_;
+  std::vector<CoreTrace> core_trace_;
+  std::vector<uint32_t> slot_track_;
   uint32_t rays_done_signal_ = VcdRecorder::kNoSignal, in_flight_signal_ = VcdRecorder::kNoSignal;
 };
 
@@ -379,8 +460,11 @@ std::string Engine<Tester, Memory>::slot_report(size_t max_slots) const {
 
 template <class Tester>
 std::unique_ptr<CycleEngine> make_for_tester(const EngineParts& p) {
-  if (p.builtin_l1s) return std::make_unique<Engine<Tester, L1Cache>>(p);
-  if (p.builtin_ideal) return std::make_unique<Engine<Tester, IdealMemory>>(p);
+  bool builtin_units = true;
+  for (const CoreBinding& c : p.cores)
+    builtin_units &= c.box_builtin && c.triangle_builtin && c.avoidance_builtin;
+  if (builtin_units && p.builtin_l1s) return std::make_unique<Engine<Tester, L1Cache>>(p);
+  if (builtin_units && p.builtin_ideal) return std::make_unique<Engine<Tester, IdealMemory>>(p);
   return std::make_unique<Engine<Tester, MemoryReadIf>>(p);
 }
 

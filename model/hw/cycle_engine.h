@@ -27,9 +27,12 @@
 
 namespace vbsim::hw {
 
+class Dispatcher;
 class IdealMemory;
 class PipelineUnit;
+class RaySource;
 class RayTestCore;
+class ResultSink;
 
 class CycleEngine {
  public:
@@ -81,9 +84,10 @@ struct EngineParts {
   const HwConfig& config;
   FunctionalReplayer& replayer;
   const Bvh& bvh;
-  RaySourceIf& source;
+  RaySource& source;       ///< the built-in ray source (called directly)
   DispatchIf& dispatcher;
-  ResultSinkIf& sink;
+  Dispatcher* builtin_dispatcher;  ///< `dispatcher` when it is the built-in one (called directly), else null
+  ResultSink& sink;        ///< the built-in result sink (called directly)
   std::vector<CoreBinding> cores;
   /// All cores' memory ports reach the built-in L1s / one built-in ideal memory
   /// (then reads are direct calls); otherwise through MemoryReadIf.

@@ -43,6 +43,7 @@ L1Cache::L1Cache(sc_core::sc_module_name name, const CacheConfig& config, uint32
 
 void L1Cache::connect_fast(L2Cache* l2) {
   l2_ = l2;
+  l2_tags_ = l2 ? &l2->tags() : nullptr;
   shape_ = !l2 || config_.ways != 4 ? Shape::Any
            : l2->ways() == 8        ? Shape::L1x4L2x8
            : l2->ways() == 16       ? Shape::L1x4L2x16
@@ -86,7 +87,7 @@ __attribute__((always_inline)) inline uint64_t L1Cache::read_line(uint64_t line,
   }
   const uint64_t fill = next_level<L2Ways>(line, a.start + level_.hit_latency());
   level_.fill<L1Ways>(line, fill, a.start);
-  if (__builtin_expect(traced_, 0)) trace_miss(a.start, fill);
+  if (__builtin_expect(vcd_ != nullptr, 0)) trace_miss(a.start, fill);
   if (__builtin_expect(fill == kPendingCycle, 0)) wait_for(line, slot, now);
   return fill;
 }
@@ -108,35 +109,17 @@ uint64_t L1Cache::read_shaped(uint64_t addr, uint32_t bytes, uint64_t now, uint3
   bytes_ += bytes;
   if (__builtin_expect(unknown != 0, 0)) return pend_read(slot, unknown, ready);
   if (ready > last_ready_) last_ready_ = ready;
-  if (__builtin_expect(traced_, 0)) trace_read(now, ready);
   return ready;
 }
 
-void L1Cache::prefetch(uint64_t addr) const {
-  const uint64_t line = addr >> line_shift_;
-  level_.tags().prefetch(line);
-  if (l2_) l2_->prefetch_line(line);
-}
-
-void L1Cache::set_tracing(VcdRecorder* vcd, TimelineRecorder* timeline) {
-  vcd_ = vcd;
-  timeline_ = timeline;
+void L1Cache::set_tracing(VcdRecorder* vcd) {
   vcd_misses_ = vcd ? vcd->signal(name(), "misses_in_flight") : VcdRecorder::kNoSignal;
-  const std::string core = get_parent_object() ? get_parent_object()->name() : name();
-  track_ = timeline ? timeline->track(core, basename()) : TimelineRecorder::kNoTrack;
-  traced_ = vcd_misses_ != VcdRecorder::kNoSignal || track_ != TimelineRecorder::kNoTrack;
-  if (vcd_misses_ == VcdRecorder::kNoSignal) vcd_ = nullptr;
+  vcd_ = vcd_misses_ == VcdRecorder::kNoSignal ? nullptr : vcd;
 }
 
 void L1Cache::trace_miss(uint64_t start, uint64_t fill) {
-  if (!vcd_) return;
   vcd_->add(vcd_misses_, start, +1);
   if (fill != kPendingCycle) vcd_->add(vcd_misses_, fill, -1);  // else when line_filled() tells the fill
-}
-
-void L1Cache::trace_read(uint64_t now, uint64_t ready) {
-  if (timeline_) timeline_->add(track_, ready - now > config_.hit_latency ? "read (miss or merge)" : "read (hit)", now,
-                                ready, -1);
 }
 
 // ---- the pending path: an approximately timed memory behind the L2 ----

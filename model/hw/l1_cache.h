@@ -21,7 +21,6 @@
 #include "hw/cache_level.h"
 #include "hw/memory_config.h"
 #include "hw/stat_provider.h"
-#include "hw/timeline_recorder.h"
 #include "hw/unit_interfaces.h"
 #include "hw/vcd_recorder.h"
 
@@ -55,7 +54,11 @@ class L1Cache final : public sc_core::sc_module, public MemoryReadIf, public Lin
 
   /// Asks the host's caches for the tag sets a read of `addr` looks up first
   /// (its first line in this L1 and in the L2); changes nothing.
-  void prefetch(uint64_t addr) const;
+  void prefetch(uint64_t addr) const {
+    const uint64_t line = addr >> line_shift_;
+    level_.tags().prefetch(line);
+    if (l2_tags_) l2_tags_->prefetch(line);
+  }
 
   const char* unit_kind() const override { return "L1Cache"; }
   nlohmann::json parameters() const override;
@@ -65,8 +68,8 @@ class L1Cache final : public sc_core::sc_module, public MemoryReadIf, public Lin
   /// The cycle of the first read and the latest ready cycle of any read (0 without reads).
   uint64_t first_read_cycle() const { return first_now_; }
   uint64_t last_ready_cycle() const { return last_ready_; }
-  /// Misses in flight (VCD) and reads (timeline) are recorded.
-  void set_tracing(VcdRecorder* vcd, TimelineRecorder* timeline);
+  /// Its misses in flight are recorded (VCD).
+  void set_tracing(VcdRecorder* vcd);
 
  private:
   enum class Shape { Any, L1x4L2x8, L1x4L2x16 };
@@ -84,13 +87,13 @@ class L1Cache final : public sc_core::sc_module, public MemoryReadIf, public Lin
   void answer(uint32_t slot, uint64_t ready);
   void send_deferred();
   void trace_miss(uint64_t start, uint64_t fill);
-  void trace_read(uint64_t now, uint64_t ready);
 
   CacheLevel level_;
   CacheConfig config_;
   uint32_t core_, first_slot_, line_shift_;
   Shape shape_ = Shape::Any;
   L2Cache* l2_ = nullptr;  // the built-in L2 when connect_fast() was called
+  const LruCache* l2_tags_ = nullptr;  // its tag array (for prefetch)
   uint64_t reads_ = 0, bytes_ = 0, first_now_ = 0, last_ready_ = 0;
   uint64_t misses_sent_late_ = 0;  ///< misses that waited for an MSHR whose fill was unknown
 
@@ -108,11 +111,9 @@ class L1Cache final : public sc_core::sc_module, public MemoryReadIf, public Lin
   std::unordered_map<uint64_t, std::vector<Waiter>> waiting_;  // by line
   std::vector<PendingRead> pending_;                           // by slot - first_slot_
   std::deque<DeferredMiss> deferred_;
-  // Tracing.
+  // Tracing (VCD of the misses in flight; null: none).
   VcdRecorder* vcd_ = nullptr;
-  TimelineRecorder* timeline_ = nullptr;
-  uint32_t vcd_misses_ = VcdRecorder::kNoSignal, track_ = TimelineRecorder::kNoTrack;
-  bool traced_ = false;
+  uint32_t vcd_misses_ = VcdRecorder::kNoSignal;
 };
 
 }  // namespace vbsim::hw

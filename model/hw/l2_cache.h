@@ -61,7 +61,7 @@ class L2Cache final : public sc_core::sc_module,
   template <uint32_t Ways>
   uint64_t read_line_inline(uint64_t line, uint64_t t, uint32_t core);
 
-  void prefetch_line(uint64_t line) const { level_.tags().prefetch(line); }
+  const LruCache& tags() const { return level_.tags(); }
   uint32_t ways() const { return config_.ways; }
 
   // ---- approximately timed: what the scheduler asks each cycle it handles ----

@@ -2,8 +2,8 @@
 
 namespace vbsim::hw {
 
-PipelineUnit::PipelineUnit(sc_core::sc_module_name name, const UnitConfig& config, const char* op)
-    : sc_core::sc_module(name), target("target"), config_(config), latency_(config.latency), op_(op),
+PipelineUnit::PipelineUnit(sc_core::sc_module_name name, const UnitConfig& config)
+    : sc_core::sc_module(name), target("target"), config_(config), latency_(config.latency),
       pipes_(config, counters_) {
   target.bind(*this);
   declare_stat("ops", "operations", "operations issued", counters_.ops);
@@ -13,23 +13,6 @@ PipelineUnit::PipelineUnit(sc_core::sc_module_name name, const UnitConfig& confi
 
 nlohmann::json PipelineUnit::parameters() const {
   return {{"count", config_.count}, {"latency", config_.latency}, {"issue_interval", config_.issue_interval}};
-}
-
-void PipelineUnit::set_tracing(VcdRecorder* vcd, TimelineRecorder* timeline) {
-  vcd_ = vcd;
-  timeline_ = timeline;
-  vcd_signal_ = vcd ? vcd->signal(name(), "ops_in_flight") : VcdRecorder::kNoSignal;
-  const std::string core = get_parent_object() ? get_parent_object()->name() : name();
-  track_ = timeline ? timeline->track(core, basename()) : TimelineRecorder::kNoTrack;
-  traced_ = vcd_signal_ != VcdRecorder::kNoSignal || track_ != TimelineRecorder::kNoTrack;
-}
-
-void PipelineUnit::trace(const UnitSchedule& s) {
-  if (vcd_) {
-    vcd_->add(vcd_signal_, s.issue, +1);
-    vcd_->add(vcd_signal_, s.done, -1);
-  }
-  if (timeline_) timeline_->add(track_, op_, s.issue, s.done, -1);
 }
 
 nlohmann::json TriangleTester::parameters() const {

@@ -22,10 +22,8 @@
 #include "hw/hw_config.h"
 #include "hw/hw_counters.h"
 #include "hw/stat_provider.h"
-#include "hw/timeline_recorder.h"
 #include "hw/unit_interfaces.h"
 #include "hw/unit_pipelines.h"
-#include "hw/vcd_recorder.h"
 
 namespace vbsim::hw {
 
@@ -33,41 +31,29 @@ class PipelineUnit : public sc_core::sc_module, public PipelineIf, public StatPr
  public:
   sc_core::sc_export<PipelineIf> target;
 
-  /// `op` names one operation in the timeline ("box", "triangle", "avoidance").
-  PipelineUnit(sc_core::sc_module_name name, const UnitConfig& config, const char* op);
+  PipelineUnit(sc_core::sc_module_name name, const UnitConfig& config);
 
   UnitSchedule schedule(uint64_t ready, uint64_t now) final { return schedule_inline(ready, now); }
   UnitSchedule schedule_inline(uint64_t ready, uint64_t now) {
     const uint64_t issue = pipes_.issue(ready, now);
-    const UnitSchedule s{issue, issue + latency_};
-    if (__builtin_expect(traced_, 0)) trace(s);
-    return s;
+    return {issue, issue + latency_};
   }
 
   const UnitConfig& config() const { return config_; }
   const UnitCounters& counters() const { return counters_; }
   nlohmann::json parameters() const override;
-  /// Records this unit's operations in flight (VCD) and operations (timeline).
-  void set_tracing(VcdRecorder* vcd, TimelineRecorder* timeline);
 
  private:
-  void trace(const UnitSchedule& s);
-
   UnitConfig config_;
   uint32_t latency_;
-  const char* op_;
   UnitCounters counters_;
   UnitPipelines pipes_;
-  bool traced_ = false;
-  VcdRecorder* vcd_ = nullptr;
-  TimelineRecorder* timeline_ = nullptr;
-  uint32_t vcd_signal_ = VcdRecorder::kNoSignal, track_ = TimelineRecorder::kNoTrack;
 };
 
 /// Tests both child boxes of one node per operation.
 class BoxUnit final : public PipelineUnit {
  public:
-  BoxUnit(sc_core::sc_module_name name, const UnitConfig& config) : PipelineUnit(name, config, "box") {}
+  BoxUnit(sc_core::sc_module_name name, const UnitConfig& config) : PipelineUnit(name, config) {}
   const char* unit_kind() const override { return "BoxUnit"; }
 };
 
@@ -75,7 +61,7 @@ class BoxUnit final : public PipelineUnit {
 class TriangleTester final : public PipelineUnit {
  public:
   TriangleTester(sc_core::sc_module_name name, const UnitConfig& config, TesterKind tester)
-      : PipelineUnit(name, config, "triangle"), tester_(tester) {}
+      : PipelineUnit(name, config), tester_(tester) {}
   const char* unit_kind() const override { return "TriangleTester"; }
   nlohmann::json parameters() const override;
   TesterKind tester() const { return tester_; }
@@ -91,7 +77,7 @@ class AvoidanceUnit final : public PipelineUnit {
  public:
   AvoidanceUnit(sc_core::sc_module_name name, const UnitConfig& config, const AvoidanceConfig& avoidance,
                 bool in_use)
-      : PipelineUnit(name, config, "avoidance"), avoidance_(avoidance), in_use_(in_use) {}
+      : PipelineUnit(name, config), avoidance_(avoidance), in_use_(in_use) {}
   const char* unit_kind() const override { return "AvoidanceUnit"; }
   nlohmann::json parameters() const override;
   bool in_use() const { return in_use_; }

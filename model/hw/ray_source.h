@@ -29,7 +29,7 @@ class RaySource final : public sc_core::sc_module, public RaySourceIf, public St
   /// The trace to emit (before the simulation starts).
   void set_feed(RayFeed feed) { feed_ = std::move(feed); }
 
-  bool start_emission(uint64_t at, uint64_t& ready) override;
+  bool start_emission(uint64_t at, uint64_t& ready) final;
   const TraceRay& trace_ray() const override { return tr_; }
   const EmittedRay& emitted_ray() const override { return er_; }
   uint64_t trace_index() const override { return index_; }

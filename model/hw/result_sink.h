@@ -25,7 +25,7 @@ class ResultSink final : public sc_core::sc_module, public ResultSinkIf, public 
   void set_callback(RayResultSink callback) { callback_ = std::move(callback); }
 
   void ray_done(const TraceRay& tr, const EmittedRay& er, const Hit& hit, uint64_t rejected, uint64_t dispatched,
-                uint64_t now, uint64_t trace_index) override;
+                uint64_t now, uint64_t trace_index) final;
 
   const SinkCounters& counters() const { return counters_; }
   const char* unit_kind() const override { return "ResultSink"; }
