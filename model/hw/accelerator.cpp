@@ -54,7 +54,7 @@ Accelerator::Accelerator(sc_core::sc_module_name name, const HwConfig& config, c
       clock_(config.clock_mhz), at_(!config.memory.ideal && config.memory.tlm == TlmStyle::ApproximatelyTimed),
       avoidance_in_use_(options.method.validity_bit && options.method.avoidance.policy != AvoidancePolicy::SignOnly),
       cores_("core") {
-  source_ = std::make_unique<RaySource>("ray_source", config.source, replayer_);
+  source_ = std::make_unique<RaySource>("ray_source", config, replayer_);
   if (units.dispatcher) {
     dispatcher_module_ = units.dispatcher("dispatcher", config);
     dispatcher_ = &replacement_as<DispatchIf>(*dispatcher_module_, "DispatchIf");
@@ -135,6 +135,7 @@ EngineParts Accelerator::engine_parts() {
   p.avoidance_in_use = avoidance_in_use_;
   p.timeline = timeline_;
   p.vcd = vcd_;
+  p.ray_times = ray_times_;
   return p;
 }
 
@@ -327,15 +328,57 @@ nlohmann::json Accelerator::hw_json() {
   const nlohmann::json mem = memory_stats();
   const SystemCRun sc = systemc_run();
   nlohmann::json j = hw_stats_json({c, config_, replayer_.stats(), mem, sc});
+  j["emission"] = emission_json();
   j["instances"] = gather_instance_stats(*this);
   return j;
+}
+
+nlohmann::json Accelerator::emission_json() const {
+  const EmissionCounters& e = source_->emission();
+  const SourceCounters& s = source_->counters();
+  const SourceConfig& sc = config_.source;
+  const uint64_t cycles = sink_->counters().last_cycle;
+  const double lane_cycles = static_cast<double>(cycles) * sc.rays_per_cycle;
+  const auto share = [&](uint64_t v) { return lane_cycles > 0 ? static_cast<double>(v) / lane_cycles : 0.0; };
+  return {{"dependencies", sc.dependencies},
+          {"rays_per_cycle", sc.rays_per_cycle},
+          {"window", sc.window},
+          {"shading_latency_cycles", config_.shader.latency_cycles},
+          {"children_waited", e.children_waited},
+          {"mean_dependency_wait_cycles",
+           e.children_waited ? static_cast<double>(e.dependency_wait_cycles) / static_cast<double>(e.children_waited)
+                             : 0.0},
+          {"parents_not_found", e.parents_not_found},
+          {"lane_cycles",
+           {{"busy", s.busy_cycles},
+            {"idle_for_dependencies", e.lane_idle_dependency_cycles},
+            {"idle_for_window", e.lane_idle_window_cycles},
+            {"holding_for_a_slot", s.no_free_slot_cycles}}},
+          {"share_of_lane_cycles",
+           {{"busy", share(s.busy_cycles)},
+            {"idle_for_dependencies", share(e.lane_idle_dependency_cycles)},
+            {"idle_for_window", share(e.lane_idle_window_cycles)},
+            {"holding_for_a_slot", share(s.no_free_slot_cycles)}}},
+          {"bundles", e.bundles},
+          {"bundled_rays", e.bundled_rays}};
 }
 
 std::string Accelerator::hw_table() {
   const HwCounters c = chip_counters();
   const nlohmann::json mem = memory_stats();
   const SystemCRun sc = systemc_run();
-  return hw_summary_table({c, config_, replayer_.stats(), mem, sc});
+  std::string table = hw_summary_table({c, config_, replayer_.stats(), mem, sc});
+  const nlohmann::json e = emission_json();
+  const auto& share = e["share_of_lane_cycles"];
+  table += fmt::format(
+      "  emission ({} lane{}, window {}, dependencies {}): lanes busy {:.1f}%, idle for parents {:.1f}%, idle for "
+      "the window {:.1f}%, holding for a slot {:.1f}%; {} children waited {:.1f} cycles on average\n",
+      config_.source.rays_per_cycle, config_.source.rays_per_cycle == 1 ? "" : "s", config_.source.window,
+      config_.source.dependencies ? "on" : "off", 100 * share["busy"].get<double>(),
+      100 * share["idle_for_dependencies"].get<double>(), 100 * share["idle_for_window"].get<double>(),
+      100 * share["holding_for_a_slot"].get<double>(), e["children_waited"].get<uint64_t>(),
+      e["mean_dependency_wait_cycles"].get<double>());
+  return table;
 }
 
 nlohmann::json Accelerator::parameters() const {

@@ -82,6 +82,10 @@ class Accelerator final : private AcceleratorChecks, public sc_core::sc_module, 
 
   // ---- before sc_start ----
   void set_feed(RayFeed feed) { source_->set_feed(std::move(feed)); }
+  /// How errors found in a ray (a child before its parent) name its line.
+  void set_locator(RayLocator locate) { source_->set_locator(std::move(locate)); }
+  /// Receives every finished ray's cycles (ready, emitted, started, finished) and slot.
+  void set_ray_times(RayTimesSink sink) { ray_times_ = std::move(sink); }
   void set_result_callback(RayResultSink callback) { sink_->set_callback(std::move(callback)); }
   /// Keep parent rays for intended origins (default true; parentless benchmark rays need not).
   void set_track_parents(bool on) { replayer_.set_track_parents(on); }
@@ -106,6 +110,8 @@ class Accelerator final : private AcceleratorChecks, public sc_core::sc_module, 
   SystemCRun systemc_run() const;
   /// The `hw` section: chip-wide figures, memory, `instances` (every module's statistics).
   nlohmann::json hw_json();
+  /// The ray source's emission: waits for parents, for the window, for slots (`hw.emission`).
+  nlohmann::json emission_json() const;
   std::string hw_table();
   FunctionalReplayer& replayer() { return replayer_; }
   RayTestCore& core(size_t i) { return cores_[i]; }
@@ -144,6 +150,7 @@ class Accelerator final : private AcceleratorChecks, public sc_core::sc_module, 
   std::unique_ptr<LineFillIf> no_fill_;  // the L2's answer path for cores whose L1 was replaced
 
   std::unique_ptr<CycleEngine> engine_;
+  RayTimesSink ray_times_;
   VcdRecorder* vcd_ = nullptr;
   TimelineRecorder* timeline_ = nullptr;
   const std::atomic<bool>* stop_ = nullptr;

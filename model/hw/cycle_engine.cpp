@@ -24,9 +24,10 @@ namespace vbsim::hw {
 
 namespace {
 
-// Event ids: slots 0 .. n-1 (a slot's next step), the source n, and n + 1 + s
-// for slot s resumed after a read whose data came later (approximately timed
-// memory). Events of one cycle are handled in the order they were scheduled
+// Event ids: slots 0 .. n-1 (a slot's next step), the source's n .. n + S - 1
+// (RaySource::event_ids: its lanes, its buffer places), and n + S + s for slot
+// s resumed after a read whose data came later (approximately timed memory).
+// Events of one cycle are handled in the order they were scheduled
 // (hw/event_wheel.h).
 constexpr uint32_t kMaxSlots = (1u << 23) - 2;
 
@@ -42,13 +43,14 @@ uint32_t slot_count(const HwConfig& cfg) {
 /// unit operations are then direct calls. Otherwise MemoryReadIf, and every
 /// unit is reached through its interface.
 template <class Tester, class Memory>
-class Engine final : public CycleEngine {
+class Engine final : public CycleEngine, private SourceHost {
  public:
   explicit Engine(const EngineParts& p)
       : cfg_(p.config), replayer_(p.replayer), bvh_(p.bvh), map_(p.bvh, p.config.address_base), source_(p.source),
         dispatcher_(p.dispatcher), builtin_dispatcher_(p.builtin_dispatcher), sink_(p.sink), cores_(p.cores), ideal_(p.builtin_ideal),
         avoidance_in_use_(p.avoidance_in_use), timeline_(p.timeline), vcd_(p.vcd) {
     check_traversal_depth(p.bvh);
+    ray_times_ = p.ray_times;
     const uint32_t slots = source_id_;  // the slots' ids are 0 .. slots - 1
     for (const CoreBinding& c : cores_) {
       l1s_.push_back(c.core->l1());
@@ -61,7 +63,7 @@ class Engine final : public CycleEngine {
     if (tracing_) set_up_tracing();
   }
 
-  void start() override { start_emission(0); }
+  void start() override { source_.start(*this, 0); }
 
   void advance(const uint64_t& limit) override {
     uint64_t at;
@@ -71,23 +73,23 @@ class Engine final : public CycleEngine {
       const uint32_t next = events_.peek_next();
       if (next < source_id_) prefetch_slot(slots_[next]);
       if (id < source_id_) step(id, at);
-      else if (id == source_id_) source_ready(at);
-      else continue_parked(id - source_id_ - 1, at);
+      else if (id < resumed_id_) source_.on_event(id - source_id_, at);
+      else continue_parked(id - resumed_id_, at);
     }
   }
   uint64_t last_handled() const override { return last_handled_; }
   bool finished() const override { return stopped_ || events_.empty(); }
-  bool complete() const override { return source_done_ && in_flight_ == 0 && !blocked_; }
+  bool complete() const override { return source_.all_done() && in_flight_ == 0; }
   uint64_t next_event_cycle() const override { return events_.empty() ? 0 : events_.next_cycle(); }
   void stop() override { stopped_ = true; }
   bool stopped() const override { return stopped_; }
   uint64_t rays_in_flight() const override { return in_flight_; }
-  uint64_t rays_fed() const override { return fed_; }
+  uint64_t rays_fed() const override { return source_.rays_read(); }
   uint64_t rays_done() const override { return done_; }
   uint64_t waiting_for_memory() const override { return parked_; }
   void resume(uint32_t slot, uint64_t ready) override {
     --parked_;
-    events_.schedule(ready, source_id_ + 1 + slot);  // the step's second half runs at `ready`
+    events_.schedule(ready, resumed_id_ + slot);  // the step's second half runs at `ready`
   }
   std::string slot_report(size_t max_slots) const override;
 
@@ -106,6 +108,7 @@ class Engine final : public CycleEngine {
     EmittedRay er;
     bool parked = false;       ///< its read's data are not known yet (resume() continues it)
     uint64_t requested = 0;    ///< parked: the cycle its read was issued
+    uint64_t ready = 0, emitted = 0;  ///< when the ray was ready for emission and its emission started
     /// Bytes from the slot's start that a node step reads: the header (core,
     /// request) and the stepper up to its box tester (3 host lines). Leaf steps
     /// read further; prefetching those lines for every step cost more than it
@@ -228,29 +231,15 @@ class Engine final : public CycleEngine {
     if (delta < 0) vcd_->add(rays_done_signal_, at, 1);
   }
 
-  // ---- ray source and dispatcher ----
+  // ---- ray source and dispatcher (the source's SourceHost) ----
 
-  /// The source starts emitting the next trace ray at cycle `at`.
-  void start_emission(uint64_t at) {
-    uint64_t ready;
-    if (!source_.start_emission(at, ready)) {  // end of the trace
-      source_done_ = true;
-      return;
-    }
-    ++fed_;
-    events_.schedule(ready, source_id_);
-  }
+  void schedule_source_event(uint32_t id, uint64_t cycle) override { events_.schedule(cycle, source_id_ + id); }
 
-  /// The emitted ray is ready at `at`: dispatch it, or hold it until a slot frees.
-  void source_ready(uint64_t at) {
+  bool try_dispatch(const SourceRay& ray, uint64_t at) override {
     const int core = pick_core();
-    if (core < 0) {
-      blocked_ = true;
-      blocked_since_ = at;
-      return;
-    }
-    dispatch(static_cast<uint32_t>(core), at);
-    start_emission(at);
+    if (core < 0) return false;
+    dispatch(static_cast<uint32_t>(core), ray, at);
+    return true;
   }
 
   /// The dispatcher's choice of a core with a free slot, or -1.
@@ -260,7 +249,7 @@ class Engine final : public CycleEngine {
                                : dispatcher_.pick(free_count_.data(), n);
   }
 
-  void dispatch(uint32_t core_index, uint64_t at) {
+  void dispatch(uint32_t core_index, const SourceRay& ray, uint64_t at) {
     const CoreBinding& core = cores_[core_index];
     std::vector<uint32_t>& free = core.core->free_slots;
     const uint32_t id = free.back();
@@ -268,10 +257,12 @@ class Engine final : public CycleEngine {
     --free_count_[core_index];
     ++in_flight_;
     Slot& s = slots_[id];
-    s.tr = source_.trace_ray();
-    s.trace_index = source_.trace_index();
-    s.er = source_.emitted_ray();
+    s.tr = ray.tr;
+    s.trace_index = ray.index;
+    s.er = ray.er;
     s.dispatched = at;
+    s.ready = ray.ready;
+    s.emitted = ray.emitted;
     KindStats& ks = replayer_.stats().by_kind[static_cast<int>(s.tr.kind)];
     s.pending = s.stepper.begin(s.er.ray, replayer_.any_hit(s.tr, s.er), ks.candidates, ks.traversal);
     // The root box test: bounds latched with the ray.
@@ -398,12 +389,10 @@ class Engine final : public CycleEngine {
     core.core->free_slots.push_back(id);
     ++free_count_[s.core];
     if (__builtin_expect(tracing_, 0)) trace_occupancy(s.core, now, -1);
-    if (blocked_) {  // the source's held ray takes a slot now
-      blocked_ = false;
-      source_.held(blocked_since_, now);
-      dispatch(static_cast<uint32_t>(pick_core()), now);
-      start_emission(now);
-    }
+    if (ray_times_) ray_times_({s.trace_index, s.tr.id, s.tr.parent, s.ready, s.emitted, s.dispatched, now, s.core,
+                                id - cores_[s.core].core->first_slot()});
+    source_.on_finish(s.trace_index, now);  // its children's wait and the window move on
+    source_.on_slot_free(now);              // a held ray takes the slot
   }
 
   const HwConfig& cfg_;
@@ -423,10 +412,12 @@ class Engine final : public CycleEngine {
   const uint64_t model_base_[2] = {map_.triangle(0), map_.node(0)};
   const uint64_t model_stride_[2] = {BvhAddressMap::kTriangleBytes, BvhAddressMap::kNodeBytes};
   uint32_t source_id_ = slot_count(cfg_);
-  EventWheel events_{2 * source_id_ + 1};
+  uint32_t resumed_id_ = source_id_ + source_.event_ids();
+  EventWheel events_{resumed_id_ + source_id_};
   std::vector<Slot> slots_;
-  bool blocked_ = false, stopped_ = false, source_done_ = false;
-  uint64_t blocked_since_ = 0, in_flight_ = 0, fed_ = 0, done_ = 0, parked_ = 0, last_handled_ = 0;
+  bool stopped_ = false;
+  uint64_t in_flight_ = 0, done_ = 0, parked_ = 0, last_handled_ = 0;
+  RayTimesSink ray_times_;
   TimelineRecorder* timeline_;
   VcdRecorder* vcd_;
   bool tracing_ = timeline_ || vcd_;
@@ -454,7 +445,7 @@ std::string Engine<Tester, Memory>::slot_report(size_t max_slots) const {
     if (s.parked) out << ", waiting since cycle " << s.requested << " for a read";
     out << "\n";
   }
-  if (blocked_) out << "  the ray source holds a ray since cycle " << blocked_since_ << " (no free slot)\n";
+  out << source_.buffer_report();
   return out.str();
 }
 

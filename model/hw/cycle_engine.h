@@ -19,6 +19,7 @@
 
 #include "hw/hw_config.h"
 #include "hw/hw_counters.h"
+#include "hw/ray_feed.h"
 #include "hw/timeline_recorder.h"
 #include "hw/unit_interfaces.h"
 #include "hw/vcd_recorder.h"
@@ -96,6 +97,7 @@ struct EngineParts {
   bool avoidance_in_use = false;  ///< validity-bit with a policy that tests suspects
   TimelineRecorder* timeline = nullptr;
   VcdRecorder* vcd = nullptr;
+  RayTimesSink ray_times;  ///< every finished ray's cycles (may be empty)
 };
 
 /// The scheduler for `parts` (which outlive it). Throws std::runtime_error when

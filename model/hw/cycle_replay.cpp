@@ -24,6 +24,8 @@ CycleRunResult run_cycle_replay(const RayFeed& feed, const Scene& scene, const B
   if (!options.timeline.path.empty()) timeline.emplace(options.timeline.first, options.timeline.cycles, options.timeline.scope);
   acc->set_tracing(vcd ? &*vcd : nullptr, timeline ? &*timeline : nullptr);
   acc->set_feed(feed);
+  acc->set_locator(options.locator);
+  acc->set_ray_times(options.ray_times);
   acc->set_result_callback(sink);
   acc->set_track_parents(options.track_parents);
   acc->set_stop_flag(options.stop);

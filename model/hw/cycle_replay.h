@@ -37,6 +37,8 @@ struct CycleRunOptions {
   TraceWindow vcd;        ///< per-instance values at cycle resolution (VCD)
   TraceWindow timeline;   ///< busy intervals by instance (Chrome trace-event JSON)
   bool track_parents = true;  ///< keep parent rays (FunctionalReplayer::set_track_parents)
+  RayLocator locator;         ///< names a ray's line in errors the model finds (may be empty)
+  RayTimesSink ray_times;     ///< every finished ray's cycles (may be empty)
   AcceleratorUnits units;     ///< replaced units (none by default)
 };
 

@@ -73,21 +73,6 @@ class LineFillIf : public virtual sc_core::sc_interface {
   virtual void line_filled(uint64_t line, uint64_t fill) = 0;
 };
 
-/// The ray source: the patent's ray-emission interface in front of the dispatcher.
-class RaySourceIf : public virtual sc_core::sc_interface {
- public:
-  /// Starts emitting the next ray at cycle `at`: false at the end of the trace;
-  /// else the cycle the emitted ray is ready for dispatch.
-  virtual bool start_emission(uint64_t at, uint64_t& ready) = 0;
-  /// The ray being emitted (valid after start_emission returned true).
-  virtual const TraceRay& trace_ray() const = 0;
-  virtual const EmittedRay& emitted_ray() const = 0;
-  /// Its position in the trace (0 for the first ray).
-  virtual uint64_t trace_index() const = 0;
-  /// The ready ray waited from `since` to `now` for a free slot.
-  virtual void held(uint64_t since, uint64_t now) = 0;
-};
-
 /// The dispatcher: which core takes the next ray.
 class DispatchIf : public virtual sc_core::sc_interface {
  public:

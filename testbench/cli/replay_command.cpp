@@ -29,7 +29,7 @@ struct ReplayArgs {
   std::string hits;
   std::string mode = "functional";
   std::string preset;  // cycle mode: hardware preset (default: the config's, else small)
-  std::string vcd, timeline, trace_scope;
+  std::string vcd, timeline, trace_scope, deps, ray_log;
   uint64_t timeline_start = 0, timeline_cycles = 2000, vcd_start = 0, vcd_cycles = 2000;
   bool quiet = false;
   MethodOptions method;
@@ -41,9 +41,17 @@ void print_progress(const hw::CycleEngine& e) {
              e.rays_done(), e.rays_in_flight());
 }
 
+/// One line of the ray log.
+std::string ray_log_line(const hw::RayTimes& t) {
+  return fmt::format(R"({{"id":{},"parent":{},"ready":{},"emit":{},"start":{},"finish":{},"core":{},"slot":{}}})"
+                     "\n",
+                     t.id, t.parent, t.ready, t.emitted, t.started, t.finished, t.core, t.slot);
+}
+
 ReplayStats run_cycle_mode(const ReplayArgs& a, const ReplayOptions& opt, TraceSource& source, const SceneAndBvh& sb,
                            std::ostream* hits, nlohmann::json& config, nlohmann::json& hw, std::string& table) {
-  const hw::HwConfig cfg = hw::resolve_hw_config(a.method.config, a.preset);
+  hw::HwConfig cfg = hw::resolve_hw_config(a.method.config, a.preset);
+  if (!a.deps.empty()) cfg.source.dependencies = a.deps == "on";
   config["hw"] = hw::hw_config_json(cfg);
   source.set_triangle_count(sb.scene.size());
   hw::CycleRunOptions run;
@@ -58,9 +66,22 @@ ReplayStats run_cycle_mode(const ReplayArgs& a, const ReplayOptions& opt, TraceS
   const hw::RayResultSink sink = [&ordered](const TraceRay& tr, const RayOutcome& out, uint64_t, uint64_t index) {
     ordered->put(index, hit_json_line(tr, out));
   };
+  run.locator = [&source](const std::string& field, const std::string& message) {
+    return std::string(source.error_at_last_ray(field, message).what());
+  };
+  // The ray log: one JSON line per ray, in trace order.
+  std::ofstream log_file;
+  std::unique_ptr<hw::TraceOrderBuffer> log;
+  if (!a.ray_log.empty()) {
+    log_file.open(a.ray_log);
+    if (!log_file) throw std::runtime_error(fmt::format("{}: cannot write the ray log", a.ray_log));
+    log = std::make_unique<hw::TraceOrderBuffer>(log_file);
+    run.ray_times = [&log](const hw::RayTimes& t) { log->put(t.trace_index, ray_log_line(t)); };
+  }
   hw::CycleRunResult r = hw::run_cycle_replay([&source](TraceRay& tr) { return source.next(tr); }, sb.scene, sb.bvh,
                                               opt, cfg, hits ? sink : hw::RayResultSink{}, run);
   if (ordered) ordered->flush();  // a stopped run: the finished rays after the first dropped one
+  if (log) log->flush();
   if (progress) fmt::print(stderr, "\n");
   hw = std::move(r.hw);
   table = std::move(r.table);
@@ -70,8 +91,9 @@ ReplayStats run_cycle_mode(const ReplayArgs& a, const ReplayOptions& opt, TraceS
 int run_replay_command(const ReplayArgs& a) {
   if (a.mode != "functional" && a.mode != "cycle")
     throw std::runtime_error(fmt::format("option '--mode': '{}' is not available; modes: functional, cycle", a.mode));
-  if (a.mode != "cycle" && (!a.preset.empty() || !a.vcd.empty() || !a.timeline.empty()))
-    throw std::runtime_error("options '--preset', '--vcd' and '--timeline' need '--mode cycle'");
+  if (a.mode != "cycle" && (!a.preset.empty() || !a.vcd.empty() || !a.timeline.empty() || !a.deps.empty() ||
+                            !a.ray_log.empty()))
+    throw std::runtime_error("options '--preset', '--vcd', '--timeline', '--deps' and '--ray-log' need '--mode cycle'");
   const ReplayOptions opt = resolve_method_options(a.method);
   auto source = open_trace(a.trace);
   const SceneAndBvh sb = load_trace_scene(source->header());
@@ -138,6 +160,13 @@ void add_replay_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--timeline-cycles", args->timeline_cycles, "cycle mode: cycles in the timeline window")
       ->capture_default_str();
+  cmd->add_option("--deps", args->deps,
+                  "cycle mode: on (a child ray waits for its parent's result plus the shading latency) or off (every "
+                  "ray independent, as a trace of unrelated queries) [the config's hw.source.dependencies, else on]")
+      ->check(CLI::IsMember({"on", "off"}));
+  cmd->add_option("--ray-log", args->ray_log,
+                  "cycle mode: write one JSON line per ray here, in trace order: id, parent, ready, emit, start and "
+                  "finish cycles, core, slot");
   cmd->add_option("--stats", args->stats, "write the statistics JSON here");
   cmd->add_option("--hits", args->hits, "write one JSON line per ray here");
   cmd->add_flag("--quiet,-q", args->quiet, "print nothing on success");
