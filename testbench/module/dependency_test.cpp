@@ -140,3 +140,27 @@ TEST_CASE("an emission width of several rays a cycle reaches its bound with idea
     CHECK(steady <= bound * 1.02);
   }
 }
+
+TEST_CASE("children of one hit with the same origin go through one bundle call of the emission API",
+          "[module][deps]") {
+  const ThreeFloors f;
+  HwConfig cfg = one_slot(3, 5, 11, 7);
+  cfg.slots_per_core = 2;
+  cfg.shader.latency_cycles = 10;
+  cfg.source.bundles = true;
+  cfg.source.bundle_cycles = 2;
+  const Logged run = run_logged({down_from(1, 1.0f), child_of(2, 1), child_of(3, 1)}, f.scene, f.bvh, cfg);
+  // P done at 36; its children ready at 46; one bundle call of 2 + 2 x 1 cycles: both
+  // emitted at 46 and dispatched at 50 into the two slots, done 35 cycles later.
+  CHECK(run.times.at(2).emitted == 46);
+  CHECK(run.times.at(3).emitted == 46);
+  CHECK(run.times.at(2).started == 50);
+  CHECK(run.times.at(3).started == 50);
+  CHECK(run.result.hw["emission"]["bundles"] == 1);
+  CHECK(run.result.hw["emission"]["bundled_rays"] == 2);
+  // Without bundles: one call each, 46-47 and 47-48.
+  cfg.source.bundles = false;
+  const Logged single = run_logged({down_from(1, 1.0f), child_of(2, 1), child_of(3, 1)}, f.scene, f.bvh, cfg);
+  CHECK(single.times.at(2).started == 47);
+  CHECK(single.times.at(3).started == 48);
+}
