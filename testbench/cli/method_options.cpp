@@ -88,6 +88,20 @@ ReplayOptions resolve_method_options(const MethodOptions& o) {
   return opt;
 }
 
+std::vector<TesterKind> parse_tester_list(const std::string& list) {
+  std::vector<TesterKind> out;
+  std::stringstream in(list);
+  for (std::string name; std::getline(in, name, ',');) {
+    TesterKind t;
+    if (!parse_tester(name, t))
+      throw UsageError(fmt::format(
+          "option '--testers': unknown tester '{}'; testers: three-half-plane, moller-trumbore, pbrt-watertight", name));
+    out.push_back(t);
+  }
+  if (out.empty()) throw UsageError("option '--testers': empty list");
+  return out;
+}
+
 void check_preset_name(const std::string& preset) {
   if (preset.empty()) return;
   std::string names;

@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "replay/replay_options.h"
 
@@ -30,6 +31,9 @@ void add_method_options(CLI::App& app, MethodOptions& o, const std::string& defa
 /// ConfigError naming the file and field for a bad --config file (a runtime
 /// error), UsageError naming the option for a bad command-line value.
 ReplayOptions resolve_method_options(const MethodOptions& o);
+
+/// A `--testers` comma list; throws UsageError naming an unknown tester or an empty list.
+std::vector<TesterKind> parse_tester_list(const std::string& list);
 
 /// Throws UsageError unless `preset` is empty or a hardware preset's name.
 void check_preset_name(const std::string& preset);

@@ -120,7 +120,7 @@ int run_render(const RenderArgs& a) {
     fmt::print("{}", r.stats.summary());
     fmt::print("render: {} rays in {:.3f} s, {:.0f} rays/s (method, exact oracle and verdict per ray)\n",
                rays, r.stats.wall_s, rays_per_s);
-    if (r.unscored_rays) fmt::print("warning: {} rays could not be scored\n", r.unscored_rays);
+    if (r.unscored_rays) fmt::print(stderr, "vbsim render: warning: {} rays could not be scored\n", r.unscored_rays);
   }
   return 0;
 }

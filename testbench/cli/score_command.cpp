@@ -8,6 +8,7 @@
 
 #include "commands.h"
 #include "exit_codes.h"
+#include "method_options.h"
 #include "output_provenance.h"
 #include "progress/progress_meter.h"
 #include "provenance/provenance.h"
@@ -30,21 +31,6 @@ struct ScoreArgs {
   bool merge = false;
   bool testers_given = false;
 };
-
-std::vector<TesterKind> parse_testers(const std::string& list) {
-  std::vector<TesterKind> out;
-  std::stringstream in(list);
-  std::string name;
-  while (std::getline(in, name, ',')) {
-    TesterKind t;
-    if (!parse_tester(name, t))
-      throw UsageError(fmt::format(
-          "option '--testers': unknown tester '{}'; testers: three-half-plane, moller-trumbore, pbrt-watertight", name));
-    out.push_back(t);
-  }
-  if (out.empty()) throw UsageError("option '--testers': empty list");
-  return out;
-}
 
 std::string joined_default_methods() {
   std::string s;
@@ -101,7 +87,7 @@ void run_score_command(const ScoreArgs& a) {
   } catch (const ConfigError& e) {
     throw UsageError(std::string("option '--methods': ") + e.what());
   }
-  const std::vector<TesterKind> testers = parse_testers(a.testers);
+  const std::vector<TesterKind> testers = parse_tester_list(a.testers);
   const std::vector<ScoreFamily> families = collect_score_families(a.paths);
 
   if (!a.methods.empty()) command += " --methods " + a.methods;

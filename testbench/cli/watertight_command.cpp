@@ -10,6 +10,7 @@
 #include "commands.h"
 #include "datapath/watertightness.h"
 #include "exit_codes.h"
+#include "method_options.h"
 #include "provenance/provenance.h"
 #include "scene/scene.h"
 
@@ -25,20 +26,6 @@ struct WatertightArgs {
   std::string json;
   bool quiet = false;
 };
-
-std::vector<TesterKind> parse_tester_list(const std::string& list) {
-  std::vector<TesterKind> out;
-  std::stringstream in(list);
-  for (std::string name; std::getline(in, name, ',');) {
-    TesterKind t;
-    if (!parse_tester(name, t))
-      throw UsageError(fmt::format(
-          "option '--testers': unknown tester '{}'; testers: three-half-plane, moller-trumbore, pbrt-watertight", name));
-    out.push_back(t);
-  }
-  if (out.empty()) throw UsageError("option '--testers': empty list");
-  return out;
-}
 
 nlohmann::json rows_json(const std::vector<WatertightnessRow>& rows) {
   nlohmann::json out = nlohmann::json::array();

@@ -74,13 +74,15 @@ class SlurmBackendTest(unittest.TestCase):
         definition = os.path.join(self.d, "arch.json")
         with open(definition, "w") as f:
             json.dump(ARCH_DEFINITION, f)
+        def arch_sweep(base, *extra):
+            return self.run_script("arch_sweep.py", "--vbsim", VBSIM, "--definition", definition, "--work",
+                                   os.path.join(base, "work"), "--out", os.path.join(base, "out"), "--results",
+                                   os.path.join(base, "results"), *extra)
+
         outputs = {}
         for backend in ("local", "slurm"):
             base = os.path.join(self.d, "arch-" + backend)
-            extra = self.slurm() if backend == "slurm" else ["--jobs", "2"]
-            err = self.run_script("arch_sweep.py", "--vbsim", VBSIM, "--definition", definition, "--work",
-                                  os.path.join(base, "work"), "--out", os.path.join(base, "out"), "--results",
-                                  os.path.join(base, "results"), *extra)
+            err = arch_sweep(base, *(self.slurm() if backend == "slurm" else ["--jobs", "2"]))
             if backend == "slurm":
                 self.assertIn("submitted Slurm job array", err)
             outputs[backend] = [load(os.path.join(base, "results", name))
@@ -89,10 +91,7 @@ class SlurmBackendTest(unittest.TestCase):
             self.assertGreater(len(local["rows"]), 1)
             self.assertEqual(local["rows"], slurm["rows"])
         # A resubmission finds every point in the cache and submits nothing.
-        base = os.path.join(self.d, "arch-slurm")
-        err = self.run_script("arch_sweep.py", "--vbsim", VBSIM, "--definition", definition, "--work",
-                              os.path.join(base, "work"), "--out", os.path.join(base, "out"), "--results",
-                              os.path.join(base, "results"), *self.slurm())
+        err = arch_sweep(os.path.join(self.d, "arch-slurm"), *self.slurm())
         self.assertIn("0 to run", err)
         self.assertNotIn("submitted", err)
 
