@@ -117,7 +117,9 @@ int run_replay_command(const ReplayArgs& a) {
   std::signal(SIGINT, previous);
   meter.finish();
 
-  const nlohmann::json provenance = provenance_json(inputs);
+  // The checksums (read once, cached) only when a file will record them.
+  const bool records = !a.stats.empty() || !a.vcd.empty() || !a.timeline.empty();
+  const nlohmann::json provenance = records ? provenance_json(inputs) : nlohmann::json();
   if (!a.vcd.empty()) add_vcd_provenance(a.vcd, provenance);
   if (!a.timeline.empty()) add_timeline_provenance(a.timeline, provenance);
   if (!a.stats.empty()) {
