@@ -28,14 +28,16 @@ std::string hit_json_line(const TraceRay& tr, const RayOutcome& out) {
 }
 
 ReplayStats run_replay(TraceSource& source, const SceneAndBvh& sb, const ReplayOptions& opt,
-                       std::ostream* hits, const std::atomic<bool>* stop) {
+                       std::ostream* hits, const std::atomic<bool>* stop, const ReplayProgress& progress) {
   source.set_triangle_count(sb.scene.size());
   FunctionalReplayer replayer(sb.scene, sb.bvh, opt);
   const auto start = std::chrono::steady_clock::now();
   TraceRay tr;
+  uint64_t done = 0;
   while (source.next(tr)) {
     const RayOutcome out = replayer.replay(tr);
     if (hits) *hits << hit_json_line(tr, out);
+    if (progress && ++done % kProgressRays == 0) progress(done);
     if (stop && stop->load(std::memory_order_relaxed)) {
       replayer.stats().partial = true;
       break;

@@ -29,7 +29,8 @@ bool is_trace_file(const fs::path& p) {
 
 /// Replays one trace with every configuration, adding into cells[0..configs).
 void score_trace(const std::string& path, const std::vector<ScoreConfig>& configs,
-                 std::vector<CandidateFilter>& filters, ScoreCell* cells, int threads) {
+                 std::vector<CandidateFilter>& filters, ScoreCell* cells, int threads,
+                 const ScoreProgress& progress) {
   auto source = open_trace(path);
   const SceneAndBvh sb = load_trace_scene(source->header());
   check_traversal_depth(sb.bvh);
@@ -46,6 +47,7 @@ void score_trace(const std::string& path, const std::vector<ScoreConfig>& config
       }
       stats[c].wall_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     });
+    if (progress) progress(blocks.rays().size());
   }
   for (size_t c = 0; c < configs.size(); ++c) {
     for (int k = 0; k < kRayKindCount; ++k) cells[c].stats.by_kind[k].add(stats[c].by_kind[k]);
@@ -96,7 +98,8 @@ std::vector<ScoreConfig> score_configs(const std::vector<MethodSpec>& methods,
 }
 
 std::vector<ScoreCell> run_score(const std::vector<ScoreFamily>& families,
-                                 const std::vector<ScoreConfig>& configs, int threads) {
+                                 const std::vector<ScoreConfig>& configs, int threads,
+                                 const ScoreProgress& progress) {
   std::vector<CandidateFilter> filters;
   for (const ScoreConfig& c : configs) filters.emplace_back(c.options.method);
   std::vector<ScoreCell> cells;
@@ -110,7 +113,7 @@ std::vector<ScoreCell> run_score(const std::vector<ScoreFamily>& families,
       cell.config = replay_config_json(c.options);
       cells.push_back(std::move(cell));
     }
-    for (const std::string& trace : fam.traces) score_trace(trace, configs, filters, &cells[first], threads);
+    for (const std::string& trace : fam.traces) score_trace(trace, configs, filters, &cells[first], threads, progress);
   }
   return cells;
 }

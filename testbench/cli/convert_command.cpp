@@ -2,6 +2,8 @@
 #include <fmt/format.h>
 
 #include "commands.h"
+#include "exit_codes.h"
+#include "provenance/provenance.h"
 #include "trace/rtcore_ray_import.h"
 #include "trace/trace_file.h"
 #include "trace/trace_header_json.h"
@@ -12,6 +14,7 @@ namespace {
 
 struct ConvertArgs {
   std::string in, out, from = "vbsim", scene;
+  bool quiet = false;
 };
 
 void run_convert(const ConvertArgs& a) {
@@ -19,17 +22,19 @@ void run_convert(const ConvertArgs& a) {
   if (a.from == "vbsim") {
     source = open_trace(a.in);
   } else if (a.from == "rtcore") {
-    if (a.scene.empty()) throw std::runtime_error("option '--scene': required with --from rtcore");
+    if (a.scene.empty()) throw UsageError("option '--scene': required with --from rtcore");
     source = std::make_unique<RtcoreRayReader>(a.in, a.scene);
   } else {
-    throw std::runtime_error(fmt::format("option '--from': unknown format '{}'; formats: vbsim, rtcore", a.from));
+    throw UsageError(fmt::format("option '--from': unknown format '{}'; formats: vbsim, rtcore", a.from));
   }
   TraceHeader header = source->header();
   header.scene = scene_relative_to(header.scene_path, a.out);  // the output may live elsewhere
+  // The output's provenance replaces the input's: it names the input by checksum.
+  header.provenance = provenance_line({a.in, header.scene_path});
   auto sink = create_trace_writer(a.out, header);
   const int64_t n = copy_trace(*source, *sink);
   sink->close();
-  fmt::print("vbsim convert: {} rays {} -> {}\n", n, a.in, a.out);
+  if (!a.quiet) fmt::print(stderr, "vbsim convert: {} rays {} -> {}\n", n, a.in, a.out);
 }
 
 }  // namespace
@@ -41,6 +46,7 @@ void add_convert_command(CLI::App& app) {
   cmd->add_option("-o,--out", args->out, "output trace: .vbt is binary, anything else text")->required();
   cmd->add_option("--from", args->from, "input format: vbsim (text or binary) or rtcore")->capture_default_str();
   cmd->add_option("--scene", args->scene, "with --from rtcore: the mesh the rays go with (header 'scene')");
+  cmd->add_flag("--quiet,-q", args->quiet, "print nothing on success");
   cmd->callback([args] { run_convert(*args); });
 }
 

@@ -5,9 +5,12 @@
 
 #include "commands.h"
 #include "exact/expected_answers.h"
+#include "progress/progress_meter.h"
+#include "provenance/provenance.h"
 #include "replay/replay_run.h"
 #include "trace/trace_file.h"
 #include "trace/trace_header_json.h"
+#include "trace/trace_ray_count.h"
 
 namespace vbsim::cli {
 
@@ -15,6 +18,7 @@ namespace {
 
 struct OracleArgs {
   std::string trace, out;
+  bool quiet = false;
 };
 
 void run_oracle(const OracleArgs& a) {
@@ -23,8 +27,11 @@ void run_oracle(const OracleArgs& a) {
   source->set_triangle_count(sb.scene.size());
   TraceHeader header = source->header();
   header.scene = scene_relative_to(header.scene_path, a.out);
+  header.provenance = provenance_line({a.trace, header.scene_path});
   auto sink = create_trace_writer(a.out, header);
   ExpectationFiller filler(sb.scene, sb.bvh);  // parents must precede children, as in a replay
+  std::FILE* terminal = ProgressMeter::terminal_or_null(a.quiet);
+  ProgressMeter meter("oracle", terminal ? count_trace_rays(a.trace) : 0, "rays", terminal);
   TraceRay tr;
   int64_t rays = 0, hits = 0;
   const auto t0 = std::chrono::steady_clock::now();
@@ -33,11 +40,14 @@ void run_oracle(const OracleArgs& a) {
     sink->write(tr);
     ++rays;
     hits += ans.prim >= 0;
+    if (rays % 256 == 0) meter.update(rays);
   }
   sink->close();
+  meter.finish();
   const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  fmt::print("vbsim oracle: {} rays ({} hit), {:.3f} s, {:.0f} rays/s -> {}\n", rays, hits, s,
-             s > 0 ? rays / s : 0.0, a.out);
+  if (!a.quiet)
+    fmt::print(stderr, "vbsim oracle: {} rays ({} hit), {:.3f} s, {:.0f} rays/s -> {}\n", rays, hits, s,
+               s > 0 ? rays / s : 0.0, a.out);
 }
 
 }  // namespace
@@ -47,6 +57,7 @@ void add_oracle_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("oracle", "fill in the exact answer (expect) of every ray");
   cmd->add_option("trace", args->trace, "input trace")->required();
   cmd->add_option("-o,--out", args->out, "output trace (.jsonl or .vbt)")->required();
+  cmd->add_flag("--quiet,-q", args->quiet, "print nothing on success");
   cmd->callback([args] { run_oracle(*args); });
 }
 

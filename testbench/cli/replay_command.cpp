@@ -1,4 +1,5 @@
-// vbsim replay: functional replay of a trace, streamed.
+// vbsim replay: functional replay of a trace, streamed, or the cycle-level
+// model's replay of it (--mode cycle).
 #include <fmt/format.h>
 
 #include <atomic>
@@ -6,15 +7,20 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
-#include <unistd.h>
 
 #include "hw/cycle_replay.h"
 #include "hw/trace_order_buffer.h"
 
 #include "commands.h"
+#include "exit_codes.h"
 #include "method_options.h"
+#include "output_provenance.h"
+#include "progress/progress_meter.h"
+#include "provenance/provenance.h"
 #include "replay/replay_run.h"
+#include "systemc_messages.h"
 #include "trace/trace_file.h"
+#include "trace/trace_ray_count.h"
 
 namespace vbsim::cli {
 
@@ -31,15 +37,11 @@ struct ReplayArgs {
   std::string preset;  // cycle mode: hardware preset (default: the config's, else small)
   std::string vcd, timeline, trace_scope, deps, ray_log;
   uint64_t timeline_start = 0, timeline_cycles = 2000, vcd_start = 0, vcd_cycles = 2000;
+  bool timeline_window_given = false;  // --timeline-start or --timeline-cycles on the command line
+  bool vcd_window_given = false;       // --vcd-start or --vcd-cycles on the command line
   bool quiet = false;
   MethodOptions method;
 };
-
-/// A one-line progress report on stderr, rewritten in place.
-void print_progress(const hw::CycleEngine& e) {
-  fmt::print(stderr, "\r  cycle {:>12}   rays done {:>10}   in flight {:>6}", e.last_handled(),
-             e.rays_done(), e.rays_in_flight());
-}
 
 /// One line of the ray log.
 std::string ray_log_line(const hw::RayTimes& t) {
@@ -49,15 +51,15 @@ std::string ray_log_line(const hw::RayTimes& t) {
 }
 
 ReplayStats run_cycle_mode(const ReplayArgs& a, const ReplayOptions& opt, TraceSource& source, const SceneAndBvh& sb,
-                           std::ostream* hits, nlohmann::json& config, nlohmann::json& hw, std::string& table) {
+                           std::ostream* hits, ProgressMeter& meter, nlohmann::json& config, nlohmann::json& hw,
+                           std::string& table) {
   hw::HwConfig cfg = hw::resolve_hw_config(a.method.config, a.preset);
   if (!a.deps.empty()) cfg.source.dependencies = a.deps == "on";
   config["hw"] = hw::hw_config_json(cfg);
   source.set_triangle_count(sb.scene.size());
   hw::CycleRunOptions run;
   run.stop = &g_stop;
-  const bool progress = !a.quiet && isatty(STDERR_FILENO);
-  if (progress) run.progress = print_progress;
+  if (meter.shown()) run.progress = [&meter](const hw::CycleEngine& e) { meter.update(e.rays_done()); };
   run.vcd = {a.vcd, a.vcd_start, a.vcd_cycles, a.trace_scope};
   run.timeline = {a.timeline, a.timeline_start, a.timeline_cycles, a.trace_scope};
   // Rays finish out of order; the hits file lists them in trace order, as the functional replay does.
@@ -82,43 +84,69 @@ ReplayStats run_cycle_mode(const ReplayArgs& a, const ReplayOptions& opt, TraceS
                                               opt, cfg, hits ? sink : hw::RayResultSink{}, run);
   if (ordered) ordered->flush();  // a stopped run: the finished rays after the first dropped one
   if (log) log->flush();
-  if (progress) fmt::print(stderr, "\n");
   hw = std::move(r.hw);
   table = std::move(r.table);
   return r.stats;
 }
 
-int run_replay_command(const ReplayArgs& a) {
+void check_mode_options(const ReplayArgs& a) {
   if (a.mode != "functional" && a.mode != "cycle")
-    throw std::runtime_error(fmt::format("option '--mode': '{}' is not available; modes: functional, cycle", a.mode));
-  if (a.mode != "cycle" && (!a.preset.empty() || !a.vcd.empty() || !a.timeline.empty() || !a.deps.empty() ||
-                            !a.ray_log.empty()))
-    throw std::runtime_error("options '--preset', '--vcd', '--timeline', '--deps' and '--ray-log' need '--mode cycle'");
+    throw UsageError(fmt::format("option '--mode': '{}' is not available; modes: functional, cycle", a.mode));
+  if (a.mode != "cycle" && (!a.preset.empty() || !a.vcd.empty() || !a.timeline.empty() || a.timeline_window_given ||
+                            a.vcd_window_given || !a.deps.empty() || !a.ray_log.empty() || !a.trace_scope.empty()))
+    throw UsageError(
+        "options '--preset', '--vcd', '--vcd-start', '--vcd-cycles', '--timeline', '--timeline-start', "
+        "'--timeline-cycles', '--trace-scope', '--deps' and '--ray-log' need '--mode cycle'");
+  if (a.timeline_window_given && a.timeline.empty())
+    throw UsageError("options '--timeline-start' and '--timeline-cycles' need '--timeline FILE'");
+  if (a.vcd_window_given && a.vcd.empty())
+    throw UsageError("options '--vcd-start' and '--vcd-cycles' need '--vcd FILE'");
+  if (a.timeline_cycles == 0) throw UsageError("option '--timeline-cycles': must be > 0");
+  if (a.vcd_cycles == 0) throw UsageError("option '--vcd-cycles': must be > 0");
+  check_preset_name(a.preset);
+}
+
+int run_replay_command(const ReplayArgs& a) {
+  check_mode_options(a);
+  set_systemc_quiet(a.quiet);
   const ReplayOptions opt = resolve_method_options(a.method);
   auto source = open_trace(a.trace);
   const SceneAndBvh sb = load_trace_scene(source->header());
+  // The inputs every output names with their checksums.
+  const std::vector<std::string> inputs = {a.trace, source->header().scene_path, a.method.config};
 
   std::ofstream hits_file;
   if (!a.hits.empty()) {
     hits_file.open(a.hits);
     if (!hits_file) throw std::runtime_error(fmt::format("{}: cannot write hits file", a.hits));
+    hits_file << hits_header_line(provenance_json(inputs));
   }
   nlohmann::json config = replay_config_json(opt);
   nlohmann::json hw;  // cycle mode: the hw section
   std::string table;
+  std::FILE* terminal = ProgressMeter::terminal_or_null(a.quiet);
+  ProgressMeter meter(fmt::format("replay ({})", a.mode), terminal ? count_trace_rays(a.trace) : 0, "rays", terminal);
   g_stop = false;
   auto previous = std::signal(SIGINT, on_interrupt);
   std::ostream* hits = a.hits.empty() ? nullptr : &hits_file;
   ReplayStats stats;
   try {
-    stats = a.mode == "cycle" ? run_cycle_mode(a, opt, *source, sb, hits, config, hw, table)
-                              : run_replay(*source, sb, opt, hits, &g_stop);
+    stats = a.mode == "cycle"
+                ? run_cycle_mode(a, opt, *source, sb, hits, meter, config, hw, table)
+                : run_replay(*source, sb, opt, hits, &g_stop,
+                             meter.shown() ? ReplayProgress([&meter](uint64_t n) { meter.update(n); }) : nullptr);
   } catch (...) {
     std::signal(SIGINT, previous);
     throw;
   }
   std::signal(SIGINT, previous);
+  meter.finish();
 
+  // The checksums (read once, cached) only when a file will record them.
+  const bool records = !a.stats.empty() || !a.vcd.empty() || !a.timeline.empty();
+  const nlohmann::json provenance = records ? provenance_json(inputs) : nlohmann::json();
+  if (!a.vcd.empty()) add_vcd_provenance(a.vcd, provenance);
+  if (!a.timeline.empty()) add_timeline_provenance(a.timeline, provenance);
   if (!a.stats.empty()) {
     std::ofstream out(a.stats);
     if (!out) throw std::runtime_error(fmt::format("{}: cannot write stats file", a.stats));
@@ -127,6 +155,7 @@ int run_replay_command(const ReplayArgs& a) {
     config["triangles"] = sb.scene.size();
     nlohmann::json j = stats.to_json(config);
     if (!hw.is_null()) j["hw"] = std::move(hw);
+    j["provenance"] = provenance;
     out << j.dump(2) << "\n";
   }
   if (!a.quiet) {
@@ -134,7 +163,7 @@ int run_replay_command(const ReplayArgs& a) {
                opt.method.name(), tester_name(opt.tester), source->header().scene, sb.scene.size());
     fmt::print("{}{}", stats.summary(), table);
   }
-  return stats.partial ? 130 : 0;
+  return stats.partial ? kExitInterrupted : kExitSuccess;
 }
 
 }  // namespace
@@ -150,16 +179,18 @@ void add_replay_command(CLI::App& app) {
   cmd->add_option("--preset", args->preset, "cycle mode: hardware preset, small or large [the config's hw.preset, else small]");
   cmd->add_option("--vcd", args->vcd,
                   "cycle mode: write a VCD of per-instance values (busy slots, operations in flight, L1 misses) here");
-  cmd->add_option("--vcd-start", args->vcd_start, "cycle mode: first cycle of the VCD window")->capture_default_str();
-  cmd->add_option("--vcd-cycles", args->vcd_cycles, "cycle mode: cycles in the VCD window")->capture_default_str();
+  CLI::Option* vcd_start =
+      cmd->add_option("--vcd-start", args->vcd_start, "cycle mode: first cycle of the VCD window")->capture_default_str();
+  CLI::Option* vcd_cycles =
+      cmd->add_option("--vcd-cycles", args->vcd_cycles, "cycle mode: cycles in the VCD window")->capture_default_str();
   cmd->add_option("--trace-scope", args->trace_scope,
                   "cycle mode: record only the instances whose hierarchical name starts with this "
                   "(e.g. accelerator.core_3) in the VCD and the timeline");
   cmd->add_option("--timeline", args->timeline, "cycle mode: write a Chrome trace-event JSON of a cycle window here");
-  cmd->add_option("--timeline-start", args->timeline_start, "cycle mode: first cycle of the timeline window")
-      ->capture_default_str();
-  cmd->add_option("--timeline-cycles", args->timeline_cycles, "cycle mode: cycles in the timeline window")
-      ->capture_default_str();
+  CLI::Option* start = cmd->add_option("--timeline-start", args->timeline_start,
+                                       "cycle mode: first cycle of the timeline window")->capture_default_str();
+  CLI::Option* cycles = cmd->add_option("--timeline-cycles", args->timeline_cycles,
+                                        "cycle mode: cycles in the timeline window")->capture_default_str();
   cmd->add_option("--deps", args->deps,
                   "cycle mode: on (a child ray waits for its parent's result plus the shading latency) or off (every "
                   "ray independent, as a trace of unrelated queries) [the config's hw.source.dependencies, else on]")
@@ -168,10 +199,12 @@ void add_replay_command(CLI::App& app) {
                   "cycle mode: write one JSON line per ray here, in trace order: id, parent, ready, emit, start and "
                   "finish cycles, core, slot");
   cmd->add_option("--stats", args->stats, "write the statistics JSON here");
-  cmd->add_option("--hits", args->hits, "write one JSON line per ray here");
-  cmd->add_flag("--quiet,-q", args->quiet, "print nothing on success");
+  cmd->add_option("--hits", args->hits, "write one JSON line per ray here (after a provenance line)");
+  cmd->add_flag("--quiet,-q", args->quiet, "print nothing on success (no progress, no SystemC info messages)");
   add_method_options(*cmd, args->method, "none");
-  cmd->callback([args] {
+  cmd->callback([args, start, cycles, vcd_start, vcd_cycles] {
+    args->timeline_window_given = start->count() > 0 || cycles->count() > 0;
+    args->vcd_window_given = vcd_start->count() > 0 || vcd_cycles->count() > 0;
     const int rc = run_replay_command(*args);
     if (rc != 0) throw CLI::RuntimeError(rc);
   });

@@ -68,7 +68,7 @@ TEST_CASE("Ctrl-C stops a cycle replay on a terminal and writes partial statisti
   std::string seen;
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
   bool open = true;
-  while (open && seen.find("rays done") == std::string::npos && std::chrono::steady_clock::now() < deadline)
+  while (open && seen.find("ETA") == std::string::npos && std::chrono::steady_clock::now() < deadline)
     open = read_terminal(terminal, seen, 50);
   kill(child, SIGINT);
   while (open) open = read_terminal(terminal, seen, 1000);
@@ -77,7 +77,9 @@ TEST_CASE("Ctrl-C stops a cycle replay on a terminal and writes partial statisti
   close(terminal);
 
   INFO(seen);
-  CHECK_THAT(seen, Catch::Contains("\r  cycle") && Catch::Contains("rays done"));
+  // The progress line: percentage of the trace's rays, and the time left.
+  CHECK_THAT(seen, Catch::Contains("\rreplay (cycle)") && Catch::Contains("%") && Catch::Contains("/300000 rays") &&
+                       Catch::Contains("ETA"));
   REQUIRE(WIFEXITED(status));
   CHECK(WEXITSTATUS(status) == 130);
   const auto s = nlohmann::json::parse(read_file(stats));
@@ -86,5 +88,5 @@ TEST_CASE("Ctrl-C stops a cycle replay on a terminal and writes partial statisti
   CHECK(done > 0);
   CHECK(done < static_cast<uint64_t>(kRays));
   const std::string lines = read_file(hits);
-  CHECK(static_cast<uint64_t>(std::count(lines.begin(), lines.end(), '\n')) == done);
+  CHECK(static_cast<uint64_t>(std::count(lines.begin(), lines.end(), '\n')) == done + 1);  // + the header
 }

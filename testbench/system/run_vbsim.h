@@ -17,9 +17,10 @@ struct RunResult {
   std::string output;
 };
 
-inline RunResult run_vbsim(const std::string& args) {
+/// Runs `vbsim ARGS` through the shell, reading its stdout.
+inline RunResult run_vbsim_raw(const std::string& args) {
   RunResult r;
-  const std::string cmd = std::string(VBSIM_BINARY) + " " + args + " 2>&1";
+  const std::string cmd = std::string(VBSIM_BINARY) + " " + args;
   FILE* pipe = popen(cmd.c_str(), "r");
   if (!pipe) return r;
   std::array<char, 4096> buf;
@@ -29,6 +30,8 @@ inline RunResult run_vbsim(const std::string& args) {
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return r;
 }
+
+inline RunResult run_vbsim(const std::string& args) { return run_vbsim_raw(args + " 2>&1"); }
 
 /// A fresh scratch directory for one test; the process id keeps test runs of
 /// different build trees (or ctest -j) apart.
@@ -50,5 +53,37 @@ inline std::string read_file(const std::filesystem::path& p) {
 }
 
 inline std::string source_dir() { return VBSIM_SOURCE_DIR; }
+
+/// Exit code, stdout and stderr of one run, kept apart.
+struct SplitRun {
+  int exit_code = -1;
+  std::string out, err;
+};
+
+inline SplitRun run_vbsim_split(const std::string& args) {
+  static int runs = 0;
+  const auto err_file = std::filesystem::temp_directory_path() /
+                        ("vbsim_stderr_" + std::to_string(::getpid()) + "_" + std::to_string(++runs));
+  const RunResult r = run_vbsim_raw(args + " 2>" + err_file.string());
+  SplitRun s{r.exit_code, r.output, read_file(err_file)};
+  std::filesystem::remove(err_file);
+  return s;
+}
+
+/// `text` without what records its making (the command line, checksums): a
+/// trace header's "provenance" field, a hits file's first line, a PLY
+/// "comment vbsim-provenance" line. What is left is what a seed determines.
+inline std::string without_provenance(std::string text) {
+  if (text.rfind("{\"format\":\"vbsim-hits\"", 0) == 0) return text.substr(text.find('\n') + 1);
+  const size_t line_end = text.find('\n');
+  const size_t field = text.find(",\"provenance\":{");
+  if (field != std::string::npos && field < line_end) {
+    const size_t object_end = text.rfind('}', line_end);  // the header's own closing brace
+    text.erase(field, object_end - field);
+  }
+  const size_t comment = text.find("\ncomment vbsim-provenance ");
+  if (comment != std::string::npos) text.erase(comment + 1, text.find('\n', comment + 1) - comment);
+  return text;
+}
 
 }  // namespace vbsim::test
