@@ -6,6 +6,7 @@
 #include "commands.h"
 #include "exact/expected_answers.h"
 #include "replay/replay_run.h"
+#include "trace/checked_trace_source.h"
 #include "trace/trace_file.h"
 #include "trace/trace_header_json.h"
 
@@ -18,8 +19,11 @@ struct OracleArgs {
 };
 
 void run_oracle(const OracleArgs& a) {
-  auto source = open_trace(a.trace);
-  const SceneAndBvh sb = load_trace_scene(source->header());
+  auto file = open_trace(a.trace);
+  const SceneAndBvh sb = load_trace_scene(file->header());
+  TraceConsistencyChecker::Options checks;
+  checks.triangles = &sb.scene.triangles;
+  auto source = std::make_unique<CheckedTraceSource>(*file, checks);  // children after parents, as the oracle needs
   source->set_triangle_count(sb.scene.size());
   TraceHeader header = source->header();
   header.scene = scene_relative_to(header.scene_path, a.out);
@@ -35,6 +39,7 @@ void run_oracle(const OracleArgs& a) {
     hits += ans.prim >= 0;
   }
   sink->close();
+  fmt::print(stderr, "{}", source->warning_lines("vbsim oracle", false));
   const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   fmt::print("vbsim oracle: {} rays ({} hit), {:.3f} s, {:.0f} rays/s -> {}\n", rays, hits, s,
              s > 0 ? rays / s : 0.0, a.out);

@@ -14,6 +14,7 @@
 #include "commands.h"
 #include "method_options.h"
 #include "replay/replay_run.h"
+#include "trace/checked_trace_source.h"
 #include "trace/trace_file.h"
 
 namespace vbsim::cli {
@@ -75,8 +76,13 @@ int run_replay_command(const ReplayArgs& a) {
   if (a.mode != "cycle" && (!a.preset.empty() || !a.vcd.empty() || !a.timeline.empty()))
     throw std::runtime_error("options '--preset', '--vcd' and '--timeline' need '--mode cycle'");
   const ReplayOptions opt = resolve_method_options(a.method);
-  auto source = open_trace(a.trace);
-  const SceneAndBvh sb = load_trace_scene(source->header());
+  auto file = open_trace(a.trace);
+  const SceneAndBvh sb = load_trace_scene(file->header());
+  // Every ray passes the consistency checks: a child before its parent is an
+  // error, the other checks are counted warnings (docs/trace-format.md).
+  TraceConsistencyChecker::Options checks;
+  checks.triangles = &sb.scene.triangles;
+  auto source = std::make_unique<CheckedTraceSource>(*file, checks);
 
   std::ofstream hits_file;
   if (!a.hits.empty()) {
@@ -107,9 +113,11 @@ int run_replay_command(const ReplayArgs& a) {
     config["triangles"] = sb.scene.size();
     nlohmann::json j = stats.to_json(config);
     if (!hw.is_null()) j["hw"] = std::move(hw);
+    j["checks"] = source->summary_json();
     out << j.dump(2) << "\n";
   }
   if (!a.quiet) {
+    fmt::print(stderr, "{}", source->warning_lines("vbsim replay", false));
     fmt::print("vbsim replay {}  method {}  tester {}  scene {} ({} triangles)\n", a.trace,
                opt.method.name(), tester_name(opt.tester), source->header().scene, sb.scene.size());
     fmt::print("{}{}", stats.summary(), table);
