@@ -6,7 +6,7 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 
 packages=(build-essential cmake pkg-config libsystemc-dev catch2 libfmt-dev nlohmann-json3-dev
           libembree-dev libassimp-dev libcli11-dev libgmp-dev libstb-dev
-          python3-numpy python3-matplotlib)
+          python3-numpy python3-matplotlib embree-tools)
 
 missing=()
 for p in "${packages[@]}"; do
