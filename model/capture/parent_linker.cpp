@@ -53,24 +53,39 @@ void LinkCounts::add(const LinkCounts& o) {
   for (int k = 0; k < kRayKindCount; ++k) by_kind[k] += o.by_kind[k];
 }
 
-bool ParentLinker::origin_matches(const RawRay& parent, const Triangle& tri, const RawRay& child, RayLink& out) const {
-  const Vec3f p = hit_point_ray(org_of(parent), dir_of(parent), parent.hit_t);  // as the application computes it
-  const Vec3d disp = sub(to_d(org_of(child)), to_d(p));
-  const double tol = rules_.ulps * ulp_of(std::max(max_abs(to_d(p)), max_abs(to_d(org_of(child)))));
-  if (max_abs(disp) <= tol) {
+ParentLinker::Candidate ParentLinker::candidate(std::size_t index, const RawRay& hit, int64_t triangle,
+                                                const Triangle& tri) const {
+  Candidate c;
+  c.index = index;
+  c.triangle = triangle;
+  c.point = hit_point_ray(org_of(hit), dir_of(hit), hit.hit_t);  // as the application computes it
+  const Vec3d n = unit_normal(tri);
+  c.normal[0] = n.x, c.normal[1] = n.y, c.normal[2] = n.z;
+  c.size = std::max(max_abs(to_d(c.point)), max_abs(to_d(hit.hit_t * dir_of(hit))));
+  return c;
+}
+
+bool ParentLinker::matches(const Candidate& c, const RawRay& child, RayLink& out) const {
+  const Vec3d disp = sub(to_d(org_of(child)), to_d(c.point));
+  const double d = max_abs(disp);
+  const double tol = rules_.ulps * ulp_of(std::max(max_abs(to_d(c.point)), max_abs(to_d(org_of(child)))));
+  if (d <= tol) {
     out.tier = LinkTier::AtHitPoint;
     out.offset = 0.0;
     return true;
   }
-  if (rules_.normal_offset <= 0.0) return false;
-  const Vec3d n = unit_normal(tri);
+  if (d > tol + rules_.normal_offset * c.size) return false;  // too far whichever way it points
+  const Vec3d n{c.normal[0], c.normal[1], c.normal[2]};
   const double along = dot(disp, n);
   const Vec3d across = sub(disp, scale(along, n));
-  const double size = std::max(max_abs(to_d(p)), max_abs(to_d(parent.hit_t * dir_of(parent))));
-  if (max_abs(across) > tol || std::fabs(along) > rules_.normal_offset * size) return false;
+  if (max_abs(across) > tol || std::fabs(along) > rules_.normal_offset * c.size) return false;
   out.tier = LinkTier::NormalOffset;
-  out.offset = size > 0.0 ? std::fabs(along) / size : 0.0;
+  out.offset = c.size > 0.0 ? std::fabs(along) / c.size : 0.0;
   return true;
+}
+
+bool ParentLinker::origin_matches(const RawRay& parent, const Triangle& tri, const RawRay& child, RayLink& out) const {
+  return matches(candidate(0, parent, -1, tri), child, out);
 }
 
 RayKind ParentLinker::infer_kind(const RawRay& parent, const Triangle& tri, const RawRay& child) const {
@@ -88,19 +103,15 @@ RayKind ParentLinker::infer_kind(const RawRay& parent, const Triangle& tri, cons
 std::vector<RayLink> ParentLinker::link(const RawRay* rays, std::size_t n, const std::vector<bool>& eligible,
                                         LinkCounts& counts) const {
   std::vector<RayLink> links(n);
-  struct RecentHit {
-    std::size_t index;
-    int64_t triangle;
-  };
-  std::deque<RecentHit> recent;  // newest at the back, at most rules_.history
+  std::deque<Candidate> recent;  // newest at the back, at most rules_.history
   for (std::size_t i = 0; i < n; ++i) {
     if (!eligible[i]) continue;
     const RawRay& r = rays[i];
     const bool occluded = r.op == static_cast<uint16_t>(RawOp::Occluded);
     RayLink& l = links[i];
     for (auto it = recent.rbegin(); it != recent.rend(); ++it) {
+      if (!matches(*it, r, l)) continue;
       const Triangle& tri = scene_.triangles()[static_cast<std::size_t>(it->triangle)];
-      if (!origin_matches(rays[it->index], tri, r, l)) continue;
       l.parent = static_cast<int64_t>(it->index);
       l.kind = occluded ? RayKind::Shadow : infer_kind(rays[it->index], tri, r);
       break;
@@ -119,7 +130,7 @@ std::vector<RayLink> ParentLinker::link(const RawRay* rays, std::size_t n, const
     if (is_hit(r)) {
       const int64_t tri = scene_.triangle_id(r.geom, r.prim);
       if (tri >= 0) {
-        recent.push_back({i, tri});
+        recent.push_back(candidate(i, r, tri, scene_.triangles()[static_cast<std::size_t>(tri)]));
         if (recent.size() > rules_.history) recent.pop_front();
       }
     }

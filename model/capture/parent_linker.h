@@ -65,7 +65,20 @@ class ParentLinker {
   /// Kind of an intersect child of `parent` on `tri` (refract, reflect or diffuse).
   RayKind infer_kind(const RawRay& parent, const Triangle& tri, const RawRay& child) const;
 
+  /// A hit as a candidate parent, with what the match needs computed once.
+  struct Candidate {
+    std::size_t index;  ///< of the hit's record in the thread's sequence
+    int64_t triangle;
+    Vec3f point;        ///< org + t dir in float32
+    double normal[3];   ///< unit geometric normal of the triangle
+    double size;        ///< max(|point|, |t dir|), largest coordinates
+  };
+  /// `tri` is triangle `triangle` of the scene.
+  Candidate candidate(std::size_t index, const RawRay& hit, int64_t triangle, const Triangle& tri) const;
+
  private:
+  bool matches(const Candidate& c, const RawRay& child, RayLink& out) const;
+
   const CapturedScene& scene_;
   LinkRules rules_;
 };

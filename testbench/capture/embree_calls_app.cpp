@@ -9,7 +9,8 @@
 // an account kept independently of the shim.
 //
 // Usage: embree_calls_app THREADS OUT.txt
-// Work items are shared by THREADS threads in whatever order they take them;
+// Thread t of THREADS runs items t, t + THREADS, ..., so every thread traces
+// and each item's rays come from a different thread than with one thread;
 // OUT.txt lists items in order, so it is the same for any thread count.
 #include <embree3/rtcore.h>
 
@@ -282,13 +283,12 @@ int main(int argc, char** argv) {
 
   const bool native16 = rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_NATIVE_RAY16_SUPPORTED) != 0;
   std::vector<std::string> results(kItems);
-  std::atomic<int> next{0};
-  auto work = [&] {
-    for (int k; (k = next++) < kItems;) results[k] = run_item(scene, k, native16);
+  auto work = [&](int first) {
+    for (int k = first; k < kItems; k += threads) results[k] = run_item(scene, k, native16);
   };
   std::vector<std::thread> pool;
-  for (int t = 1; t < threads; ++t) pool.emplace_back(work);
-  work();
+  for (int t = 1; t < threads; ++t) pool.emplace_back(work, t);
+  work(0);
   for (std::thread& t : pool) t.join();
 
   FILE* out = std::fopen(argv[2], "w");

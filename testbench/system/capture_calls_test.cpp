@@ -109,6 +109,7 @@ TEST_CASE("capture agrees ray for ray with an application's own account of its E
     CHECK_FALSE(std::filesystem::exists(out / "raw"));
   }
   // Any number of threads: the same trace, scene and answers.
+  CHECK(nlohmann::json::parse(read_file(dir / "t4" / "capture.json"))["threads"] == 4);
   CHECK(trace_rays_text(dir / "t1" / "trace.jsonl") == trace_rays_text(dir / "t4" / "trace.jsonl"));
   CHECK(read_file(dir / "t1" / "scene.ply") == read_file(dir / "t4" / "scene.ply"));
   CHECK(read_file(dir / "t1" / "embree_hits.jsonl") == read_file(dir / "t4" / "embree_hits.jsonl"));

@@ -155,16 +155,23 @@ TEST_CASE("capture of a lit, two-threaded pathtracer render: the same image and 
     return c;
   };
   REQUIRE(shell(command(dir / "plain.ppm", 2)) == 0);
-  for (int threads : {1, 2}) {
+  // A small render may finish before the renderer's second thread takes a
+  // tile: the two-thread capture is repeated until both traced (each run takes
+  // a fraction of a second).
+  auto capture = [&](int threads) {
     const auto out = dir / ("t" + std::to_string(threads));
-    const RunResult r = run_vbsim("capture --strip-offsets -o " + out.string() + " -- " + command(out / "image.ppm", threads));
+    const RunResult r =
+        run_vbsim("capture --strip-offsets -o " + out.string() + " -- " + command(out / "image.ppm", threads));
     INFO(r.output);
     REQUIRE(r.exit_code == 0);
     CHECK(read_file(out / "image.ppm") == read_file(dir / "plain.ppm"));
-  }
+    return nlohmann::json::parse(read_file(out / "capture.json"));
+  };
+  capture(1);
+  nlohmann::json report = capture(2);
+  for (int attempt = 1; attempt < 10 && report["threads"] < 2; ++attempt) report = capture(2);
+  REQUIRE(report["threads"] >= 2);
   CHECK(rays_text(dir / "t1" / "trace.jsonl") == rays_text(dir / "t2" / "trace.jsonl"));
-  const nlohmann::json report = nlohmann::json::parse(read_file(dir / "t2" / "capture.json"));
-  CHECK(report["threads"] >= 2);
   // --strip-offsets: every child starts at its parent's hit point with tmin 0.
   // That point is the application's (its origin + t d): for a child of a
   // camera ray it is the trace's parent ray at parent_t exactly; deeper, the
