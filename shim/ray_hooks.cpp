@@ -117,30 +117,20 @@ void rtcOccluded1(RTCScene scene, RTCIntersectContext* ctx, RTCRay* ray) {
   record_ray(r);
 }
 
-void rtcIntersect4(const int* valid, RTCScene scene, RTCIntersectContext* ctx, RTCRayHit4* p) {
-  VBSIM_REAL(rtcIntersect4);
-  packet<4>(RawOp::Intersect, RawApi::Four, valid, scene, ctx, p, real);
-}
-void rtcIntersect8(const int* valid, RTCScene scene, RTCIntersectContext* ctx, RTCRayHit8* p) {
-  VBSIM_REAL(rtcIntersect8);
-  packet<8>(RawOp::Intersect, RawApi::Eight, valid, scene, ctx, p, real);
-}
-void rtcIntersect16(const int* valid, RTCScene scene, RTCIntersectContext* ctx, RTCRayHit16* p) {
-  VBSIM_REAL(rtcIntersect16);
-  packet<16>(RawOp::Intersect, RawApi::Sixteen, valid, scene, ctx, p, real);
-}
-void rtcOccluded4(const int* valid, RTCScene scene, RTCIntersectContext* ctx, RTCRay4* p) {
-  VBSIM_REAL(rtcOccluded4);
-  packet<4>(RawOp::Occluded, RawApi::Four, valid, scene, ctx, p, real);
-}
-void rtcOccluded8(const int* valid, RTCScene scene, RTCIntersectContext* ctx, RTCRay8* p) {
-  VBSIM_REAL(rtcOccluded8);
-  packet<8>(RawOp::Occluded, RawApi::Eight, valid, scene, ctx, p, real);
-}
-void rtcOccluded16(const int* valid, RTCScene scene, RTCIntersectContext* ctx, RTCRay16* p) {
-  VBSIM_REAL(rtcOccluded16);
-  packet<16>(RawOp::Occluded, RawApi::Sixteen, valid, scene, ctx, p, real);
-}
+// The six packet functions: rtcIntersectW(valid, scene, ctx, RTCRayHitW*) and
+// rtcOccludedW(valid, scene, ctx, RTCRayW*) for W = 4, 8, 16.
+#define VBSIM_PACKET_HOOK(name, Packet, width, op, api)                                   \
+  void name(const int* valid, RTCScene scene, RTCIntersectContext* ctx, Packet* p) {     \
+    VBSIM_REAL(name);                                                                     \
+    packet<width>(op, api, valid, scene, ctx, p, real);                                   \
+  }
+VBSIM_PACKET_HOOK(rtcIntersect4, RTCRayHit4, 4, RawOp::Intersect, RawApi::Four)
+VBSIM_PACKET_HOOK(rtcIntersect8, RTCRayHit8, 8, RawOp::Intersect, RawApi::Eight)
+VBSIM_PACKET_HOOK(rtcIntersect16, RTCRayHit16, 16, RawOp::Intersect, RawApi::Sixteen)
+VBSIM_PACKET_HOOK(rtcOccluded4, RTCRay4, 4, RawOp::Occluded, RawApi::Four)
+VBSIM_PACKET_HOOK(rtcOccluded8, RTCRay8, 8, RawOp::Occluded, RawApi::Eight)
+VBSIM_PACKET_HOOK(rtcOccluded16, RTCRay16, 16, RawOp::Occluded, RawApi::Sixteen)
+#undef VBSIM_PACKET_HOOK
 
 // Streams of single rays: M RTCRayHit (or RTCRay) `stride` bytes apart, or M pointers to them.
 namespace {
@@ -226,6 +216,18 @@ RawRay input_of_np(RawOp op, SceneStamp stamp, const RTCRayNp& r, unsigned i) {
   return input(op, RawApi::Np, stamp, org, r.tnear[i], dir, r.time[i], r.tfar[i], r.mask[i], r.flags[i]);
 }
 
+/// Counts the call and saves the inputs of the active rays of a pointer-SOA stream.
+void save_np(RawOp op, RTCScene scene, const RTCRayNp& r, unsigned n, std::vector<RawRay>& saved,
+             std::vector<unsigned>& lanes) {
+  count_call(RawApi::Np, op == RawOp::Occluded);
+  const SceneStamp stamp = scene_stamp(scene);
+  for (unsigned i = 0; i < n; ++i)
+    if (r.tnear[i] <= r.tfar[i]) {
+      lanes.push_back(i);
+      saved.push_back(input_of_np(op, stamp, r, i));
+    }
+}
+
 }  // namespace
 
 void rtcIntersectNM(RTCScene scene, RTCIntersectContext* ctx, RTCRayHitN* rh, unsigned int n, unsigned int m,
@@ -244,15 +246,9 @@ void rtcOccludedNM(RTCScene scene, RTCIntersectContext* ctx, RTCRayN* ray, unsig
 void rtcIntersectNp(RTCScene scene, RTCIntersectContext* ctx, const RTCRayHitNp* rh, unsigned int n) {
   VBSIM_REAL(rtcIntersectNp);
   if (!capture_enabled()) return real(scene, ctx, rh, n);
-  count_call(RawApi::Np, false);
-  const SceneStamp stamp = scene_stamp(scene);
   std::vector<RawRay> saved;  // inputs saved across the call (local: a filter function may trace too)
   std::vector<unsigned> lanes;
-  for (unsigned i = 0; i < n; ++i)
-    if (rh->ray.tnear[i] <= rh->ray.tfar[i]) {
-      lanes.push_back(i);
-      saved.push_back(input_of_np(RawOp::Intersect, stamp, rh->ray, i));
-    }
+  save_np(RawOp::Intersect, scene, rh->ray, n, saved, lanes);
   real(scene, ctx, rh, n);
   for (std::size_t k = 0; k < saved.size(); ++k) {
     const unsigned i = lanes[k];
@@ -265,15 +261,9 @@ void rtcIntersectNp(RTCScene scene, RTCIntersectContext* ctx, const RTCRayHitNp*
 void rtcOccludedNp(RTCScene scene, RTCIntersectContext* ctx, const RTCRayNp* ray, unsigned int n) {
   VBSIM_REAL(rtcOccludedNp);
   if (!capture_enabled()) return real(scene, ctx, ray, n);
-  count_call(RawApi::Np, true);
-  const SceneStamp stamp = scene_stamp(scene);
-  std::vector<RawRay> saved;  // inputs saved across the call (local: a filter function may trace too)
+  std::vector<RawRay> saved;
   std::vector<unsigned> lanes;
-  for (unsigned i = 0; i < n; ++i)
-    if (ray->tnear[i] <= ray->tfar[i]) {
-      lanes.push_back(i);
-      saved.push_back(input_of_np(RawOp::Occluded, stamp, *ray, i));
-    }
+  save_np(RawOp::Occluded, scene, *ray, n, saved, lanes);
   real(scene, ctx, ray, n);
   for (std::size_t k = 0; k < saved.size(); ++k) {
     saved[k].hit_t = ray->tfar[lanes[k]];

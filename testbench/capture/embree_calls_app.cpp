@@ -74,6 +74,19 @@ void take_hit(Ray& r, const RTCRayHit& h) {
   r.ng = {h.hit.Ng_x, h.hit.Ng_y, h.hit.Ng_z};
 }
 
+/// Copies the results of an SOA layout back into `rays`; field(k, i) is field
+/// k (RTCRayN then RTCHitN order) of lane i.
+template <class Field>
+void read_back(std::vector<Ray>& rays, bool occluded, Field field) {
+  for (unsigned i = 0; i < rays.size(); ++i) {
+    Ray& r = rays[i];
+    r.t = field(8, i);
+    if (occluded) continue;
+    r.ng = {field(12, i), field(13, i), field(14, i)}, r.u = field(15, i), r.v = field(16, i);
+    r.prim = reinterpret_cast<unsigned&>(field(17, i)), r.geom = reinterpret_cast<unsigned&>(field(18, i));
+  }
+}
+
 /// Traces `rays` (all intersect or all occluded) through entry point `api`.
 /// Lane 1 of every packet or stream is inactive: it is dropped from `rays`.
 void trace(RTCScene scene, int api, std::vector<Ray>& rays) {
@@ -110,14 +123,7 @@ void trace(RTCScene scene, int api, std::vector<Ray>& rays) {
       if (w == 8) rtcIntersect8(valid, scene, &ctx, reinterpret_cast<RTCRayHit8*>(block));
       if (w == 16) rtcIntersect16(valid, scene, &ctx, reinterpret_cast<RTCRayHit16*>(block));
     }
-    for (unsigned i = 0; i < n; ++i) {
-      Ray& r = rays[i];
-      r.t = f(8, i);
-      if (!occ) {
-        r.ng = {f(12, i), f(13, i), f(14, i)}, r.u = f(15, i), r.v = f(16, i);
-        r.prim = reinterpret_cast<unsigned&>(f(17, i)), r.geom = reinterpret_cast<unsigned&>(f(18, i));
-      }
-    }
+    read_back(rays, occ, f);
   } else if (api == 4 || api == 5) {  // 1M (an array) or 1Mp (pointers)
     std::vector<RTCRayHit> hs(n);
     std::vector<RTCRayHit*> ps(n);
@@ -157,14 +163,7 @@ void trace(RTCScene scene, int api, std::vector<Ray>& rays) {
     if (api == 6 && !occ) rtcIntersectNM(scene, &ctx, reinterpret_cast<RTCRayHitN*>(blocks.data()), w, m, 20 * w * 4);
     if (api == 7 && occ) rtcOccludedNp(scene, &ctx, &np.ray, n);
     if (api == 7 && !occ) rtcIntersectNp(scene, &ctx, &np, n);
-    for (unsigned i = 0; i < n; ++i) {
-      Ray& r = rays[i];
-      r.t = at(8, i);
-      if (!occ) {
-        r.ng = {at(12, i), at(13, i), at(14, i)}, r.u = at(15, i), r.v = at(16, i);
-        r.prim = reinterpret_cast<unsigned&>(at(17, i)), r.geom = reinterpret_cast<unsigned&>(at(18, i));
-      }
-    }
+    read_back(rays, occ, at);
   }
   rays.erase(rays.begin() + 1);  // the inactive lane was never traced
 }

@@ -12,7 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "run_vbsim.h"
+#include "capture_test_support.h"
 #include "scene/scene.h"
 #include "trace/text_trace_reader.h"
 
@@ -89,11 +89,6 @@ int expected_triangle(int geom, int prim) {
   return -1;
 }
 
-std::string trace_rays_text(const std::filesystem::path& trace) {
-  const std::string all = read_file(trace);
-  return all.substr(all.find('\n') + 1);  // the header names the command line
-}
-
 }  // namespace
 
 TEST_CASE("capture agrees ray for ray with an application's own account of its Embree calls", "[cli][capture]") {
@@ -122,23 +117,14 @@ TEST_CASE("capture agrees ray for ray with an application's own account of its E
   CHECK(report["rays_in_trace"] == app_rec.rays.size());
   CHECK(report["not_captured"]["invalid"] == 0);
 
-  TextTraceReader reader((out / "trace.jsonl").string());
-  std::vector<TraceRay> trace;
-  for (TraceRay tr; reader.next(tr);) trace.push_back(tr);
+  const std::vector<TraceRay> trace = read_trace(out / "trace.jsonl");
   REQUIRE(trace.size() == app_rec.rays.size());
   std::map<std::string, int64_t> id_of;
   for (const TraceRay& tr : trace) {
     const float o[3] = {tr.o.x, tr.o.y, tr.o.z}, d[3] = {tr.d.x, tr.d.y, tr.d.z};
     CHECK(id_of.emplace(bits_key(tr.kind == RayKind::Shadow, o, d, tr.tmin, tr.tmax), tr.id).second);
   }
-  std::vector<nlohmann::json> hits(trace.size());
-  {
-    std::istringstream in(read_file(out / "embree_hits.jsonl"));
-    for (std::string line; std::getline(in, line);) {
-      const auto j = nlohmann::json::parse(line);
-      hits.at(j["id"].get<std::size_t>()) = j;
-    }
-  }
+  const std::vector<nlohmann::json> hits = read_embree_hits(out / "embree_hits.jsonl", trace.size());
   const Scene scene = load_scene((out / "scene.ply").string());
   REQUIRE(scene.size() == 5);
   CHECK(scene.triangles[0].v1 == Vec3f{10, -10, 0});  // floor, from a 16-byte-stride shared buffer

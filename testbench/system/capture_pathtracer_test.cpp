@@ -14,7 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "datapath/hit_point.h"
-#include "run_vbsim.h"
+#include "capture_test_support.h"
 #include "scene/scene.h"
 #include "trace/text_trace_reader.h"
 
@@ -33,18 +33,6 @@ std::string pathtracer(const std::filesystem::path& image, int threads, const st
 int shell(const std::string& cmd) {
   const int status = std::system((cmd + " > /dev/null 2>&1").c_str());
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
-std::vector<TraceRay> read_trace(const std::filesystem::path& p) {
-  TextTraceReader reader(p.string());
-  std::vector<TraceRay> rays;
-  for (TraceRay tr; reader.next(tr);) rays.push_back(tr);
-  return rays;
-}
-
-std::string rays_text(const std::filesystem::path& trace) {
-  const std::string all = read_file(trace);
-  return all.substr(all.find('\n') + 1);  // the header names the command line
 }
 
 float max_abs(Vec3f v) { return std::max({std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)}); }
@@ -90,14 +78,7 @@ TEST_CASE("capture of embree-tools' pathtracer: counts, links, an unchanged imag
   // child starts at that point, or off it along the triangle's normal by at
   // most 2^-10 of the point's size (the tutorial offsets bounce rays by
   // 32 x 2^-23 x max(|P|, t) along Ng).
-  std::vector<nlohmann::json> hits(trace.size());
-  {
-    std::istringstream in(read_file(out / "embree_hits.jsonl"));
-    for (std::string line; std::getline(in, line);) {
-      const auto j = nlohmann::json::parse(line);
-      hits.at(j["id"].get<std::size_t>()) = j;
-    }
-  }
+  const std::vector<nlohmann::json> hits = read_embree_hits(out / "embree_hits.jsonl", trace.size());
   const Scene scene = load_scene((out / "scene.ply").string());
   CHECK(scene.size() == 3674);
   int at_point = 0;
@@ -171,7 +152,7 @@ TEST_CASE("capture of a lit, two-threaded pathtracer render: the same image and 
   nlohmann::json report = capture(2);
   for (int attempt = 1; attempt < 10 && report["threads"] < 2; ++attempt) report = capture(2);
   REQUIRE(report["threads"] >= 2);
-  CHECK(rays_text(dir / "t1" / "trace.jsonl") == rays_text(dir / "t2" / "trace.jsonl"));
+  CHECK(trace_rays_text(dir / "t1" / "trace.jsonl") == trace_rays_text(dir / "t2" / "trace.jsonl"));
   // --strip-offsets: every child starts at its parent's hit point with tmin 0.
   // That point is the application's (its origin + t d): for a child of a
   // camera ray it is the trace's parent ray at parent_t exactly; deeper, the
