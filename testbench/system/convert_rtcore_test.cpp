@@ -45,7 +45,7 @@ std::map<int64_t, int> hit_prims(const std::filesystem::path& hits) {
 
 }  // namespace
 
-TEST_CASE("convert --to rtcore: a generated trace round-trips o, d and tmax; primary rays hit the same triangles",
+TEST_CASE("convert --to rtcore: a generated trace round-trips o, d and tmax and primary rays hit the same triangles",
           "[cli][rtcore]") {
   const auto dir = scratch_dir("convert_to_rtcore");
   // far-instance carries a header transform: the mesh written must have it applied.

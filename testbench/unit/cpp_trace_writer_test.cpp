@@ -128,7 +128,7 @@ TEST_CASE("C++ writer: both forms read back bit for bit by vbsim's readers", "[w
   CHECK_FALSE(std::filesystem::exists(dir.file("hard.vbt.partial")));
 }
 
-TEST_CASE("C++ writer: errors name the line or record and field; an unfinished file is removed", "[writer]") {
+TEST_CASE("C++ writer: errors name the line or record and field, and an unfinished file is removed", "[writer]") {
   TempDir dir("cpp-writer-errors");
   auto message_of = [](auto&& f) -> std::string {
     try {
