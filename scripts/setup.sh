@@ -5,10 +5,11 @@ set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 
 # git: the revision `vbsim --version` reports; libssl-dev: SHA-256 of the inputs every
-# output records; slurm-wlm and munge: the Slurm backend's test runs a one-node cluster.
+# output records; slurm-wlm and munge: the Slurm backend's test runs a one-node cluster;
+# embree-tools: the path tracer `vbsim capture` is tested on.
 packages=(build-essential cmake pkg-config git libsystemc-dev catch2 libfmt-dev nlohmann-json3-dev
           libembree-dev libassimp-dev libcli11-dev libgmp-dev libssl-dev libstb-dev
-          python3-numpy python3-matplotlib slurm-wlm munge)
+          python3-numpy python3-matplotlib slurm-wlm munge embree-tools)
 
 missing=()
 for p in "${packages[@]}"; do

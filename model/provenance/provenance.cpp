@@ -6,7 +6,7 @@
 #include <map>
 
 #include "provenance/file_digest.h"
-#include "vbsim_version.h"  // generated at build time (cmake/write_version.cmake)
+#include "vbsim_version.h"  // generated at build time (scripts/cmake/write_version.cmake)
 
 namespace vbsim {
 

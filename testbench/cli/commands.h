@@ -20,6 +20,8 @@ void add_scenarios_command(CLI::App& app);
 void add_fit_command(CLI::App& app);
 void add_render_command(CLI::App& app);
 void add_hw_command(CLI::App& app);
+void add_check_command(CLI::App& app);
+void add_capture_command(CLI::App& app);
 
 /// The main job: replay of the default trace with validity-bit, printed summary.
 int run_default_job();

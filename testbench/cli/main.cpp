@@ -35,6 +35,8 @@ int sc_main(int argc, char** argv) {
   add_fit_command(app);
   add_render_command(app);
   add_hw_command(app);
+  add_check_command(app);
+  add_capture_command(app);
   try {
     app.parse(argc, argv);
     if (app.get_subcommands().empty()) return run_default_job();

@@ -8,6 +8,7 @@
 #include "progress/progress_meter.h"
 #include "provenance/provenance.h"
 #include "replay/replay_run.h"
+#include "trace/checked_trace_source.h"
 #include "trace/trace_file.h"
 #include "trace/trace_header_json.h"
 #include "trace/trace_ray_count.h"
@@ -22,8 +23,11 @@ struct OracleArgs {
 };
 
 void run_oracle(const OracleArgs& a) {
-  auto source = open_trace(a.trace);
-  const SceneAndBvh sb = load_trace_scene(source->header());
+  auto file = open_trace(a.trace);
+  const SceneAndBvh sb = load_trace_scene(file->header());
+  TraceConsistencyChecker::Options checks;
+  checks.triangles = &sb.scene.triangles;
+  auto source = std::make_unique<CheckedTraceSource>(*file, checks);  // children after parents, as the oracle needs
   source->set_triangle_count(sb.scene.size());
   TraceHeader header = source->header();
   header.scene = scene_relative_to(header.scene_path, a.out);
@@ -43,6 +47,7 @@ void run_oracle(const OracleArgs& a) {
     if (rays % 256 == 0) meter.update(rays);
   }
   sink->close();
+  fmt::print(stderr, "{}", source->warning_lines("vbsim oracle", false));
   meter.finish();
   const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (!a.quiet)

@@ -19,6 +19,7 @@
 #include "provenance/provenance.h"
 #include "replay/replay_run.h"
 #include "systemc_messages.h"
+#include "trace/checked_trace_source.h"
 #include "trace/trace_file.h"
 #include "trace/trace_ray_count.h"
 
@@ -110,10 +111,15 @@ int run_replay_command(const ReplayArgs& a) {
   check_mode_options(a);
   set_systemc_quiet(a.quiet);
   const ReplayOptions opt = resolve_method_options(a.method);
-  auto source = open_trace(a.trace);
-  const SceneAndBvh sb = load_trace_scene(source->header());
+  auto file = open_trace(a.trace);
+  const SceneAndBvh sb = load_trace_scene(file->header());
+  // Every ray passes the consistency checks: a child before its parent is an
+  // error, the other checks are counted warnings (docs/trace-format.md).
+  TraceConsistencyChecker::Options checks;
+  checks.triangles = &sb.scene.triangles;
+  auto source = std::make_unique<CheckedTraceSource>(*file, checks);
   // The inputs every output names with their checksums.
-  const std::vector<std::string> inputs = {a.trace, source->header().scene_path, a.method.config};
+  const std::vector<std::string> inputs = {a.trace, file->header().scene_path, a.method.config};
 
   std::ofstream hits_file;
   if (!a.hits.empty()) {
@@ -156,9 +162,11 @@ int run_replay_command(const ReplayArgs& a) {
     nlohmann::json j = stats.to_json(config);
     if (!hw.is_null()) j["hw"] = std::move(hw);
     j["provenance"] = provenance;
+    j["checks"] = source->summary_json();
     out << j.dump(2) << "\n";
   }
   if (!a.quiet) {
+    fmt::print(stderr, "{}", source->warning_lines("vbsim replay", false));
     fmt::print("vbsim replay {}  method {}  tester {}  scene {} ({} triangles)\n", a.trace,
                opt.method.name(), tester_name(opt.tester), source->header().scene, sb.scene.size());
     fmt::print("{}{}", stats.summary(), table);
