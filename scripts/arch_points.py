@@ -3,26 +3,21 @@
 A point is one `vbsim replay TRACE --mode cycle --config POINT.json --stats OUT.json`
 process: a trace, a configuration (an `hw` object and nothing else) and a method
 written in `vbsim score`'s syntax, `METHOD[+METHOD][:KEY=VALUE...]` with KEY a
-`vbsim replay` option without its dashes. Finished points are kept in a cache
+`vbsim replay` option without its dashes. Points run through point_jobs.py
+(local processes or a Slurm job array); finished points are kept in a cache
 folder under a key made of the vbsim binary's contents, the trace's contents, the
 configuration and the method, so a rerun skips every point it has already done
 with the same build (a rebuilt model reruns them all).
 """
-import hashlib
 import json
 import os
-import subprocess
 import sys
-import threading
-from concurrent.futures import ThreadPoolExecutor
+
+from point_jobs import Point, content_key, file_digest
 
 MEMORY_STALLS = ("l1_mshr_full", "l2_mshr_full", "dram_outstanding_full", "dram_bandwidth")
 STALL_CAUSES = ("memory_wait", "box_pipeline_full", "triangle_pipeline_full",
                 "avoidance_pipeline_full", "stack_refill_wait")
-
-_digests = {}
-_digest_lock = threading.Lock()
-
 
 def method_args(spec):
     """`vbsim replay` options of a method spec: `validity-bit:vb-policy=vote` ->
@@ -40,48 +35,26 @@ def method_args(spec):
 
 def trace_digest(path):
     """SHA-256 of a file's bytes, a trace's or the vbsim binary's (computed once per run)."""
-    with _digest_lock:
-        if path not in _digests:
-            h = hashlib.sha256()
-            with open(path, "rb") as f:
-                for block in iter(lambda: f.read(1 << 20), b""):
-                    h.update(block)
-            _digests[path] = h.hexdigest()
-        return _digests[path]
+    return file_digest(path)
 
 
 def point_key(vbsim, trace, config, method):
-    text = json.dumps({"vbsim": trace_digest(vbsim), "trace": trace_digest(trace), "config": config,
-                       "method": method}, sort_keys=True)
-    return hashlib.sha256(text.encode()).hexdigest()[:20]
+    return content_key(vbsim=trace_digest(vbsim), trace=trace_digest(trace), config=config, method=method)
 
 
-def run_point(vbsim, cache, trace, config, method, fresh=False):
-    """Stats JSON of one point; from the cache when the same point was done."""
+def arch_point(vbsim, cache, trace, config, method):
+    """The point of one cycle-level replay; writes its configuration file into the cache."""
     key = point_key(vbsim, trace, config, method)
-    stats_path = os.path.join(cache, key + ".stats.json")
-    if not fresh and os.path.exists(stats_path):
-        with open(stats_path) as f:
-            return json.load(f)
     os.makedirs(cache, exist_ok=True)
     config_path = os.path.join(cache, key + ".config.json")
-    with open(config_path, "w") as f:
-        json.dump(config, f, indent=1, sort_keys=True)
-    partial = stats_path + ".part"
-    cmd = [vbsim, "replay", trace, "--mode", "cycle", "--config", config_path,
-           "--stats", partial, "-q", *method_args(method)]
-    proc = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    if proc.returncode != 0:
-        sys.exit(f"arch_sweep: command failed ({proc.returncode}): {' '.join(cmd)}\n{proc.stderr}")
-    os.replace(partial, stats_path)  # only a finished run enters the cache
-    with open(stats_path) as f:
-        return json.load(f)
-
-
-def run_points(vbsim, cache, points, jobs, fresh=False):
-    """Runs [(trace, config, method)] in `jobs` parallel processes; stats in order."""
-    with ThreadPoolExecutor(max_workers=max(1, jobs)) as pool:
-        return list(pool.map(lambda p: run_point(vbsim, cache, *p, fresh=fresh), points))
+    if not os.path.exists(config_path):
+        with open(config_path + ".part", "w") as f:
+            json.dump(config, f, indent=1, sort_keys=True)
+        os.replace(config_path + ".part", config_path)
+    result = os.path.join(cache, key + ".stats.json")
+    command = [vbsim, "replay", trace, "--mode", "cycle", "--config", config_path,
+               "--stats", result + ".part", "-q", *method_args(method)]
+    return Point(f"{os.path.basename(trace)} {method} {json.dumps(config, sort_keys=True)}", [command], result)
 
 
 def bound_terms(stats):

@@ -3,11 +3,13 @@
 pipeline latencies, cache sizes, DRAM latency and bandwidth and methods; the
 presets' predictions; and each method's cost in cycles on every scenario family.
 Every point is an independent `vbsim replay --mode cycle --config POINT.json
---stats OUT.json` process, run in parallel; finished points are cached.
+--stats OUT.json` process, run in parallel on local cores or as one Slurm job
+array (point_jobs.py, docs/cluster.md); finished points are cached by content.
 
     /usr/bin/python3 scripts/arch_sweep.py [--vbsim build/vbsim] [--definition FILE]
         [--only NAME ...] [--work build/arch] [--out docs/results]
         [--results build/results] [--jobs N] [--fresh] [--list]
+        [--backend slurm [--partition P] [--account A] [--time T] [--max-parallel N]]
 
 Output:
     OUT/arch-GROUP.png              one chart per sweep group
@@ -25,9 +27,11 @@ import sys
 
 import arch_families
 from arch_charts import CHARTS
-from arch_points import merge, run_points, set_path, summarise
+from arch_points import arch_point, merge, set_path, summarise
 import arch_report
 import arch_sweep_definitions
+from point_jobs import add_backend_arguments, check_backend_arguments, run_points
+import provenance
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
@@ -107,13 +111,13 @@ def main():
     ap.add_argument("--work", default=os.path.join(ROOT, "build", "arch"), help="traces and cached points")
     ap.add_argument("--out", default=os.path.join(ROOT, "docs", "results"), help="charts and architecture.md")
     ap.add_argument("--results", default=os.path.join(ROOT, "build", "results"), help="JSON results")
-    ap.add_argument("--jobs", type=int, default=os.cpu_count() or 2)
-    ap.add_argument("--fresh", action="store_true", help="rerun points already in the cache")
     ap.add_argument("--families", nargs="*",
                     help="measure the methods' cycles on these scenario folders (as scored by vbsim score, "
                          "so the rows join with its table) instead of small generated ones")
     ap.add_argument("--list", action="store_true", help="list the sweeps and exit")
+    add_backend_arguments(ap)
     args = ap.parse_args()
+    check_backend_arguments(ap, args)
 
     if args.definition:
         with open(args.definition) as f:
@@ -148,9 +152,11 @@ def main():
         f_points, f_labels = arch_families.family_points(families, family_spec)
     everything = points + p_points + f_points
     print(f"arch_sweep: {len(everything)} points ({len(points)} sweep, {len(p_points)} preset, "
-          f"{len(f_points)} family) on {args.jobs} workers", file=sys.stderr)
-    stats = run_points(vbsim, cache, everything, args.jobs, args.fresh)
+          f"{len(f_points)} family)", file=sys.stderr)
+    stats = run_points([arch_point(vbsim, cache, *p) for p in everything], args, args.work, "arch_sweep")
     summaries = [summarise(s) for s in stats]
+    traces_used = sorted({p[0] for p in everything})
+    prov = provenance.script_provenance(vbsim, traces_used)
 
     rows = [{**label, **s} for label, s in zip(labels, summaries[:len(points)])]
     preset_rows = [{**label, **s} for label, s in zip(p_labels, summaries[len(points):len(points) + len(p_points)])]
@@ -166,6 +172,7 @@ def main():
     for group, members in groups.items():
         image = f"arch-{group}.png"
         CHARTS[members[0]["chart"]](members, rows, os.path.join(args.out, image))
+        provenance.stamp_png(os.path.join(args.out, image), prov)
         if members[0]["chart"] == "methods":
             sections.append(arch_report.methods_section(members[0], rows, image))
         else:
@@ -173,34 +180,21 @@ def main():
     if preset_rows:
         sections.insert(0, arch_report.presets_section(preset_rows, definition.get("method", "none")))
     if family_rows:
-        sections.append(arch_report.families_section(family_rows, family_spec))
+        sections.append(arch_report.families_section(family_rows, family_spec, args.families))
         preset = family_spec.get("preset", "small")
         with open(os.path.join(args.results, "method_cycles.json"), "w") as f:
-            json.dump({"preset": preset, "rows": family_rows}, f, indent=1)
+            json.dump({"preset": preset, "rows": family_rows, "provenance": prov}, f, indent=1)
 
     with open(os.path.join(args.results, "arch_sweep.json"), "w") as f:
-        json.dump({"trace": os.path.relpath(trace, ROOT), "rows": rows, "presets": preset_rows}, f, indent=1)
+        json.dump({"trace": os.path.relpath(trace, ROOT), "rows": rows, "presets": preset_rows,
+                   "provenance": prov}, f, indent=1)
     command = "/usr/bin/python3 scripts/arch_sweep.py" + (
         f" --definition {args.definition}" if args.definition else "") + (
         " --only " + " ".join(args.only) if args.only else "")
     if args.families:  # the scored families of make_results.sh, which runs this
         command = "scripts/make_results.sh (which runs " + command + " --families DIR...)"
-    rays = rows[0]["rays"] if rows else 0
-    intro = [f"Sweep trace: `{os.path.relpath(trace, ROOT)}` ({rays} rays, "
-             f"`vbsim gen {definition['trace'].get('scenario', '')} --rays {definition['trace'].get('rays', '')} "
-             f"--seed {definition['trace'].get('seed', '')}`)"
-             if "scenario" in definition["trace"] else f"Sweep trace: `{definition['trace']['file']}` ({rays} rays)",
-             "", f"Method `{definition.get('method', 'none')}` unless a chart varies it. Rays per cycle are "
-             "measured over the whole run (first dispatch to last result). The analytic bound is "
-             "docs/hw-model.md's: min(1 / source cycles per ray, cores x count / (issue interval x "
-             "operations per ray)) for the box, triangle and avoidance pipelines, with the operations "
-             "per ray measured at that point.", "",
-             "Stall shares are slot-cycles spent waiting, as a share of all slot-cycles. A pipeline "
-             "serves requests in the order they are made (`model/hw/unit_pipelines.h`): with the memory "
-             "hierarchy, a request whose node comes from DRAM holds back the requests made after it "
-             "even when their nodes hit the L1, and that wait is counted as a pipeline issue wait "
-             "(box issue wait), not as memory wait."]
-    arch_report.write_page(os.path.join(args.out, "architecture.md"), command, intro, sections)
+    intro = arch_report.intro(definition, os.path.relpath(trace, ROOT), rows, preset_rows, family_rows)
+    arch_report.write_page(os.path.join(args.out, "architecture.md"), command, intro, sections, prov)
     print(f"arch_sweep: wrote {args.out}/architecture.md, {len(groups)} charts and {args.results}/arch_sweep.json",
           file=sys.stderr)
 

@@ -36,6 +36,7 @@ matplotlib.use("Agg")
 import matplotlib.image as mpimg  # noqa: E402
 import matplotlib.patches as mpatches  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
+import provenance  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
@@ -193,7 +194,7 @@ def main():
     methods = [m for m in a.methods.split(",") if m]
 
     specs = a.scenes or DEFAULT_SCENES
-    rows = []
+    rows, scenes_used = [], []
     try:
         for spec in specs:
             inside = spec.endswith("+inside")
@@ -211,6 +212,7 @@ def main():
             if resolved is None:
                 raise SceneError(f"{spec}: not a file and not a scenario of {a.vbsim}")
             label, scene = resolved
+            scenes_used.append(scene)
             options = inside_view(scene) if inside else []
             label += "\n(inside)" if inside else ""
             tag = os.path.splitext(os.path.basename(scene))[0]
@@ -221,6 +223,7 @@ def main():
     except SceneError as e:
         sys.exit(f"make_montage: {e}")
     montage(rows, methods, a.out)
+    provenance.stamp_png(a.out, provenance.script_provenance(os.path.abspath(a.vbsim), scenes_used))
     print(f"make_montage: wrote {a.out}")
 
 

@@ -14,11 +14,16 @@
 #  5. montage.png: every method rendered on the failure scenes
 #     (scripts/make_montage.py).
 #
-#   scripts/make_results.sh [--rays N] [--seed S]
+#   scripts/make_results.sh [--rays N] [--seed S] [--backend slurm [--partition P]
+#                           [--account A] [--time T] [--max-parallel N]]
 #
 # --rays (default 10000) is passed to every scenario's `vbsim gen --rays`; a
 # scenario whose rays mean something costlier gets its own count in rays_for()
-# below. Same arguments, same files (but for the measured speeds).
+# below. Same arguments, same files (but for the measured speeds and the
+# provenance each file records). --backend slurm runs the score (one point per
+# family, scripts/score_points.py), the architecture and the stability sweeps
+# as Slurm job arrays (docs/cluster.md); the build folder must be on a file
+# system the compute nodes share.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$root"
@@ -26,11 +31,13 @@ cd "$root"
 rays=10000
 seed=1
 args=()
+backend=()  # passed to the scripts that run points (scripts/point_jobs.py)
 while (($#)); do
   case "$1" in
     --rays) rays="$2"; args+=("$1" "$2"); shift 2 ;;
     --seed) seed="$2"; args+=("$1" "$2"); shift 2 ;;
-    *) echo "make_results.sh: unknown argument '$1' (use --rays N, --seed S)" >&2; exit 2 ;;
+    --backend|--partition|--account|--time|--max-parallel) backend+=("$1" "$2"); shift 2 ;;
+    *) echo "make_results.sh: unknown argument '$1' (use --rays N, --seed S, --backend slurm ...)" >&2; exit 2 ;;
   esac
 done
 
@@ -66,19 +73,26 @@ for scenario in $("$vbsim" scenarios --names); do
   while read -r family extra; do
     # shellcheck disable=SC2086 # extra holds separate words
     "$vbsim" gen "$scenario" --rays "$(rays_for "$family")" --seed "$seed" $extra \
-      -o "$out/scenarios/$family" > /dev/null
+      -q -o "$out/scenarios/$family"
     dirs+=("$out/scenarios/$family")
   done < <(families_of "$scenario")
 done
 
-"$vbsim" score "${dirs[@]}" --testers three-half-plane,moller-trumbore,pbrt-watertight --out "$out/accuracy.json" --accuracy-md docs/results/accuracy.md \
-  --regenerate-with "scripts/make_results.sh${args[*]:+ ${args[*]}}"
+testers=three-half-plane,moller-trumbore,pbrt-watertight
+regenerate="scripts/make_results.sh${args[*]:+ ${args[*]}}"
+if ((${#backend[@]})); then
+  /usr/bin/python3 scripts/score_points.py "${dirs[@]}" --vbsim "$vbsim" --testers "$testers" \
+    --out "$out/accuracy.json" --accuracy-md docs/results/accuracy.md --regenerate-with "$regenerate" "${backend[@]}"
+else
+  "$vbsim" score "${dirs[@]}" --testers "$testers" --out "$out/accuracy.json" --accuracy-md docs/results/accuracy.md \
+    --regenerate-with "$regenerate"
+fi
 echo "make_results.sh: wrote docs/results/accuracy.md and $out/accuracy.json" >&2
 
 /usr/bin/python3 scripts/arch_sweep.py --vbsim "$vbsim" --families "${dirs[@]}" --out docs/results \
-  --results "$out"
+  --results "$out" ${backend[@]+"${backend[@]}"}
 /usr/bin/python3 scripts/pareto.py --score "$out/accuracy.json" --cycles "$out/method_cycles.json" \
   --out docs/results
-/usr/bin/python3 scripts/sweep.py --vbsim "$vbsim" --work "$out/sweeps" --out docs/results
+/usr/bin/python3 scripts/sweep.py --vbsim "$vbsim" --work "$out/sweeps" --out docs/results ${backend[@]+"${backend[@]}"}
 /usr/bin/python3 scripts/make_montage.py
 echo "make_results.sh: every result in docs/results/ regenerated" >&2

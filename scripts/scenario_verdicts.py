@@ -41,7 +41,7 @@ def main():
     with tempfile.TemporaryDirectory() as tmp:
         for name in a.scenarios:
             out = os.path.join(tmp, name)
-            subprocess.run([a.vbsim, "gen", name, "--rays", str(a.rays), "--seed", str(a.seed), "-o", out]
+            subprocess.run([a.vbsim, "gen", name, "--rays", str(a.rays), "--seed", str(a.seed), "-q", "-o", out]
                            + [x for kv in a.set for x in ("--set", kv)],
                            check=True, stdout=subprocess.DEVNULL)
             traces = sorted(glob.glob(os.path.join(out, "*.jsonl")))

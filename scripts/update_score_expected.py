@@ -47,7 +47,7 @@ def main():
         paths = []
         for family, args in GEN:
             out = os.path.join(tmp, family)
-            subprocess.run([vbsim, "gen"] + args.replace("{source}", ROOT).split() + ["-o", out], check=True, stdout=subprocess.DEVNULL)
+            subprocess.run([vbsim, "gen"] + args.replace("{source}", ROOT).split() + ["-q", "-o", out], check=True, stdout=subprocess.DEVNULL)
             paths.append(out)
         paths.append(os.path.join(ROOT, BUNDLED))
         score_path = os.path.join(tmp, "score.json")

@@ -74,8 +74,10 @@ VertexKey key_of(Vec3f p) {
 
 std::string describe(Vec3f p) { return fmt::format("({:.9g}, {:.9g}, {:.9g})", p.x, p.y, p.z); }
 
-/// Edges and vertices of a closed, consistently wound mesh, as aiming targets.
-MeshTargets build_targets(const std::vector<Triangle>& mesh) {
+/// Edges and vertices of a consistently wound mesh, as aiming targets. A closed
+/// mesh must have every edge in two triangles; an open one (`allow_open`) has
+/// its boundary edges and their vertices left out and counted.
+MeshTargets build_targets(const std::vector<Triangle>& mesh, bool allow_open, int64_t* open_edges = nullptr) {
   std::map<VertexKey, int> vertex_id;
   std::vector<Vec3f> positions;
   std::vector<std::vector<int>> triangles_at_vertex;
@@ -115,12 +117,18 @@ MeshTargets build_targets(const std::vector<Triangle>& mesh) {
                            static_cast<int>(tris.size())});
     out.incident.insert(out.incident.end(), tris);
   };
+  std::vector<bool> on_boundary(positions.size(), false);
   for (const auto& [edge, tri] : directed_edge) {
     auto twin = directed_edge.find({edge.second, edge.first});
-    if (twin == directed_edge.end())
-      throw std::invalid_argument(fmt::format(
-          "watertightness: edge {} -> {} of triangle {} has no neighbour; the mesh is not closed",
-          describe(positions[edge.first]), describe(positions[edge.second]), tri));
+    if (twin == directed_edge.end()) {
+      if (!allow_open)
+        throw std::invalid_argument(fmt::format(
+            "watertightness: edge {} -> {} of triangle {} has no neighbour; the mesh is not closed",
+            describe(positions[edge.first]), describe(positions[edge.second]), tri));
+      on_boundary[edge.first] = on_boundary[edge.second] = true;
+      if (open_edges) ++*open_edges;
+      continue;
+    }
     if (edge.first > edge.second) continue;  // each undirected edge once, from its lower id
     const Vec3f a = positions[edge.first], b = positions[edge.second];
     bool exact = false;
@@ -132,6 +140,7 @@ MeshTargets build_targets(const std::vector<Triangle>& mesh) {
     add_target(p, exact, {tri, twin->second});
   }
   for (size_t v = 0; v < positions.size(); ++v) {
+    if (on_boundary[v]) continue;
     out.targets.push_back({positions[v], true, static_cast<int>(out.incident.size()),
                            static_cast<int>(triangles_at_vertex[v].size())});
     out.incident.insert(out.incident.end(), triangles_at_vertex[v].begin(),
@@ -193,14 +202,14 @@ void shoot(const Tester& tester, const std::vector<Triangle>& mesh, const int* i
 
 }  // namespace
 
-int64_t watertightness_target_count(const std::vector<Triangle>& mesh) {
-  return static_cast<int64_t>(build_targets(mesh).targets.size());
+int64_t watertightness_target_count(const std::vector<Triangle>& mesh, bool allow_open) {
+  return static_cast<int64_t>(build_targets(mesh, allow_open).targets.size());
 }
 
 WatertightnessCounts measure_watertightness(const std::vector<Triangle>& mesh, TesterKind kind,
-                                            const std::vector<Vec3f>& origins) {
-  const MeshTargets targets = build_targets(mesh);
+                                            const std::vector<Vec3f>& origins, bool allow_open) {
   WatertightnessCounts counts;
+  const MeshTargets targets = build_targets(mesh, allow_open, &counts.open_edges);
   for (const Vec3f& o : origins) {
     for (const Target& target : targets.targets) {
       Ray ray;
@@ -218,6 +227,8 @@ WatertightnessCounts measure_watertightness(const std::vector<Triangle>& mesh, T
       if (d_exact && target.on_feature_exactly) ++counts.exact_aim;
       if (kind == TesterKind::ThreeHalfPlane)
         shoot(ThreeHalfPlaneTester(ray), mesh, incident, target.incident_count, counts);
+      else if (kind == TesterKind::PbrtWatertight)
+        shoot(PbrtWatertightTester(ray), mesh, incident, target.incident_count, counts);
       else
         shoot(MollerTrumboreTester(ray), mesh, incident, target.incident_count, counts);
     }

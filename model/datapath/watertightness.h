@@ -28,16 +28,22 @@ struct WatertightnessCounts {
   int64_t exact_aim = 0;    ///< rays passing exactly through their target, which lies exactly
                             ///< on the edge or vertex (no rounding in target or in d)
   int64_t skipped = 0;      ///< (target, origin) pairs not shot: grazing at the target
+  int64_t open_edges = 0;   ///< edges in one triangle only (an open mesh): not aimed at
 };
 
 /// Counts for `mesh` (closed: every edge in exactly two triangles, by exact vertex
 /// positions) under tester `kind`, shooting every target from every origin.
-/// Throws std::invalid_argument naming the first edge that is not shared by two triangles.
+/// Throws std::invalid_argument naming the first edge that is not shared by two
+/// triangles, unless `allow_open`: then an open mesh (a scanned model with holes)
+/// is measured at its interior edges and vertices only, boundary edges and their
+/// vertices being no target, and `lost` keeps its meaning only for rays whose
+/// target is interior (such a ray crosses the surface there).
 WatertightnessCounts measure_watertightness(const std::vector<Triangle>& mesh, TesterKind kind,
-                                            const std::vector<Vec3f>& origins);
+                                            const std::vector<Vec3f>& origins, bool allow_open = false);
 
-/// Number of targets measure_watertightness() aims at: 3 per edge + 1 per vertex.
-int64_t watertightness_target_count(const std::vector<Triangle>& mesh);
+/// Number of targets measure_watertightness() aims at: 3 per edge + 1 per vertex
+/// (interior ones only with `allow_open`).
+int64_t watertightness_target_count(const std::vector<Triangle>& mesh, bool allow_open = false);
 
 /// Deterministic origins for a mesh: `outside` points on a sphere of 2.5x the
 /// bounding box half-diagonal around its centre and `inside` points within 0.3x

@@ -96,19 +96,31 @@ const Scenario* find_scenario(const std::string& name) {
   return nullptr;
 }
 
-std::string write_scenario_case(const ScenarioCase& c, const std::string& dir, const std::string& generator) {
+std::string write_scenario_case(const ScenarioCase& c, const std::string& dir, const std::string& generator,
+                                const CaseWriteOptions& options) {
   fs::create_directories(dir);
   const std::string trace_path = (fs::path(dir) / (c.name + ".jsonl")).string();
   std::string scene_path = c.scene_file;
   if (scene_path.empty()) {
     scene_path = (fs::path(dir) / (c.name + ".ply")).string();
-    write_ply_scene(scene_path, c.triangles, c.normals);
+    write_ply_scene(scene_path, c.triangles, c.normals,
+                    options.provenance.empty() ? "" : "vbsim-provenance " + options.provenance);
+    if (options.written) options.written->push_back(scene_path);
   }
   // The oracle sees the scene exactly as a replay will load it.
   const Scene scene = load_scene(scene_path, c.transform);
   const Bvh bvh = build_bvh(scene);
   std::vector<TraceRay> rays = c.rays;
-  fill_expect(rays, scene, bvh);
+  ExpectationFiller filler(scene, bvh);  // parents before children, as in a replay
+  uint64_t unreported = 0;
+  for (TraceRay& r : rays) {
+    filler.fill(r);
+    if (options.on_rays && ++unreported == kOracleProgressRays) {
+      options.on_rays(unreported);
+      unreported = 0;
+    }
+  }
+  if (options.on_rays && unreported) options.on_rays(unreported);
 
   TraceHeader h;
   h.scene = scene_relative_to(scene_path, trace_path);
@@ -116,9 +128,11 @@ std::string write_scenario_case(const ScenarioCase& c, const std::string& dir, c
   h.transform = c.transform;
   h.generator = generator;
   h.description = c.description;
+  h.provenance = options.provenance;
   auto sink = create_trace_writer(trace_path, h);
   for (const TraceRay& r : rays) sink->write(r);
   sink->close();
+  if (options.written) options.written->push_back(trace_path);
   return trace_path;
 }
 

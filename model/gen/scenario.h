@@ -6,6 +6,7 @@
 #pragma once
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <optional>
 #include <set>
@@ -65,9 +66,17 @@ const std::vector<Scenario>& scenarios();
 /// The scenario called `name`, or null.
 const Scenario* find_scenario(const std::string& name);
 
+/// What write_scenario_case records and reports besides the case itself.
+struct CaseWriteOptions {
+  std::string provenance;  ///< JSON object for the trace header and the PLY comment (empty: none)
+  std::function<void(uint64_t rays)> on_rays;  ///< told of every kOracleProgressRays rays filled in, and the rest
+  std::vector<std::string>* written = nullptr;  ///< gets the paths of the files written
+};
+constexpr uint64_t kOracleProgressRays = 256;
+
 /// Writes `c` into `dir`: NAME.ply (unless it references a scene file) and
 /// NAME.jsonl with `expect` from the oracle; returns the trace's path.
-std::string write_scenario_case(const ScenarioCase& c, const std::string& dir,
-                                const std::string& generator);
+std::string write_scenario_case(const ScenarioCase& c, const std::string& dir, const std::string& generator,
+                                const CaseWriteOptions& options = {});
 
 }  // namespace vbsim

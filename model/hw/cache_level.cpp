@@ -12,4 +12,14 @@ CacheLevel::CacheLevel(const CacheConfig& config)
   ring_mask_ = (uint32_t{1} << bits) - 1;
 }
 
+void CacheLevel::resolve(uint64_t line, uint64_t fill) {
+  tags_.set_fill(line, fill);
+  // Unknown fills sort last: the first of them takes `fill` and moves to its place.
+  uint32_t k = 0;
+  while (k < mshrs_ && ring_at(k) != kPendingCycle) ++k;
+  if (k == mshrs_) return;  // no MSHR waits for an unknown fill (not a valid call)
+  for (; k > 0 && ring_at(k - 1) > fill; --k) ring_at(k) = ring_at(k - 1);
+  ring_at(k) = fill;
+}
+
 }  // namespace vbsim::hw

@@ -19,7 +19,8 @@
 #include <vector>
 
 #include "hw/lru_cache.h"
-#include "hw/memory_port.h"
+#include "hw/pending_cycle.h"
+#include "hw/memory_config.h"
 
 namespace vbsim::hw {
 
@@ -69,9 +70,38 @@ class CacheLevel {
   /// line is allocated now, in the way of the least recently used line not in
   /// flight at `start`; the MSHR the miss took is held until `fill`. `Ways` as
   /// for access().
-  /// Inlined into the hierarchy's line reads (below the class).
+  /// Inlined into the caches' line reads.
   template <uint32_t Ways = 0>
-  void fill(uint64_t line, uint64_t fill, uint64_t start);
+  void fill(uint64_t line, uint64_t fill, uint64_t start) {
+    install<Ways>(line, fill, start);
+    hold_mshr(fill);
+  }
+
+  // The parts of fill(), for a miss whose fill cycle (or start) is not known
+  // when it is allocated (an approximately timed memory behind the level: the
+  // fill is then kPendingCycle until resolve()).
+  /// Allocates `line` with fill cycle `fill` at cycle `start` (as fill() does).
+  template <uint32_t Ways = 0>
+  void install(uint64_t line, uint64_t fill, uint64_t start) {
+    tags_.install_in<Ways>(tags_.set_of(line), line, fill, start);
+  }
+  /// The MSHR that frees first is held until `fill`.
+  void hold_mshr(uint64_t fill);
+  /// The earliest cycle an MSHR is free (kPendingCycle: every MSHR holds a
+  /// miss whose fill is not known yet).
+  uint64_t mshr_free_cycle() const { return ring_[head_]; }
+  /// Counts `cycles` more waited for a free MSHR (a miss that waited for one
+  /// whose fill was not known when the miss arrived).
+  void count_mshr_wait(uint64_t cycles) { counters_.mshr_stall_cycles += cycles; }
+  /// The miss of `line` allocated with an unknown fill has its data at `fill`:
+  /// the line (if still present) and one MSHR held until an unknown cycle
+  /// take that cycle.
+  void resolve(uint64_t line, uint64_t fill);
+  /// A request counted as a merge turned out to arrive at or after the fill: a hit.
+  void recount_merge_as_hit() {
+    --counters_.merges;
+    ++counters_.hits;
+  }
 
   uint32_t hit_latency() const { return hit_latency_; }
   /// The counters, accesses = hits + misses + merges.
@@ -99,9 +129,7 @@ class CacheLevel {
   LevelCounters counters_;  // accesses unused: counters() derives it
 };
 
-template <uint32_t Ways>
-__attribute__((always_inline)) inline void CacheLevel::fill(uint64_t line, uint64_t fill, uint64_t start) {
-  tags_.install_in<Ways>(tags_.set_of(line), line, fill, start);
+__attribute__((always_inline)) inline void CacheLevel::hold_mshr(uint64_t fill) {
   // The front MSHR leaves the ring and comes back in, free at `fill`, at its
   // place from the tail (fills arrive nearly in order: few moves).
   head_ = (head_ + 1) & ring_mask_;

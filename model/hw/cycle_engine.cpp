@@ -1,6 +1,7 @@
 #include "hw/cycle_engine.h"
 
 #include <algorithm>
+#include <sstream>
 #include <stdexcept>
 #include <type_traits>
 #include <vector>
@@ -8,92 +9,89 @@
 #include "datapath/bvh_stepper.h"
 #include "datapath/testers.h"
 #include "hw/bvh_address_map.h"
+#include "hw/dispatcher.h"
 #include "hw/event_wheel.h"
-#include "hw/memory_hierarchy.h"
-#include "hw/unit_pipelines.h"
+#include "hw/ideal_memory.h"
+#include "hw/l1_cache.h"
+#include "hw/pipeline_units.h"
+#include "hw/ray_source.h"
+#include "hw/ray_test_core.h"
+#include "hw/result_sink.h"
+
+#include <systemc>
 
 namespace vbsim::hw {
 
 namespace {
 
-// Event ids: slots 0 .. n-1, the source n. Events of one cycle are handled in
-// the order they were scheduled (hw/event_wheel.h).
-constexpr uint32_t kMaxSlots = (1u << 24) - 2;
+// Event ids: slots 0 .. n-1 (a slot's next step), the source's n .. n + S - 1
+// (RaySource::event_ids: its lanes, its buffer places), and n + S + s for slot
+// s resumed after a read whose data came later (approximately timed memory).
+// Events of one cycle are handled in the order they were scheduled
+// (hw/event_wheel.h).
+constexpr uint32_t kMaxSlots = (1u << 23) - 2;
 
-/// The number of event ids for `cfg`: its slots and the source.
-uint32_t event_ids(const HwConfig& cfg) {
+/// The number of slots of `cfg`.
+uint32_t slot_count(const HwConfig& cfg) {
   const uint64_t slots = uint64_t{cfg.cores} * cfg.slots_per_core;
   if (slots > kMaxSlots) throw std::runtime_error("hw: too many slots");
-  return static_cast<uint32_t>(slots + 1);
+  return static_cast<uint32_t>(slots);
 }
 
-/// Running totals of every core's pipelines, by kind.
-struct UnitTotals {
-  UnitCounters box, triangle, avoidance;
-};
-
-struct Core {
-  Core(const HwConfig& c, UnitTotals& t) : box(c.box, t.box), tri(c.triangle, t.triangle), avoid(c.avoidance, t.avoidance) {}
-  UnitPipelines box, tri, avoid;
-  std::vector<uint32_t> free_slots;  ///< global slot ids
-};
-
-/// Emission-time method operations acting on `tr` (each costs emission_op_cycles).
-uint32_t emission_ops(const SelfIntersectionMethod& m, const TraceRay& tr) {
-  const bool child = tr.parent_prim >= 0, shadow = tr.kind == RayKind::Shadow;
-  uint32_t ops = m.tmin;
-  if (child) ops += m.offset_normal + m.offset_direction + m.offset_adaptive + m.offset_errbound;
-  if (shadow && child) ops += m.shading_position || m.shading_position_always;
-  if (shadow) ops += m.reverse_shadow;
-  return ops;
-}
-
-/// `Memory` is the port's concrete type when the engine knows it (IdealMemory,
-/// MemoryHierarchy: their reads are then direct calls), else MemoryPort.
+/// `Memory` is the memory modules' type when every core's port reaches a
+/// built-in one (L1Cache, IdealMemory) and every unit is built-in: reads and
+/// unit operations are then direct calls. Otherwise MemoryReadIf, and every
+/// unit is reached through its interface.
 template <class Tester, class Memory>
-class Engine final : public CycleEngine {
+class Engine final : public CycleEngine, private SourceHost {
  public:
-  Engine(const HwConfig& cfg, FunctionalReplayer& replayer, const Bvh& bvh, Memory& memory, RayFeed feed,
-         RayResultSink sink)
-      : cfg_(cfg), replayer_(replayer), bvh_(bvh), memory_(memory), map_(bvh, cfg.address_base), feed_(std::move(feed)),
-        sink_(std::move(sink)),
-        avoidance_in_use_(replayer.options().method.validity_bit &&
-                          replayer.options().method.avoidance.policy != AvoidancePolicy::SignOnly) {
-    check_traversal_depth(bvh);
-    const uint32_t slots = source_id_;
-    cores_.reserve(cfg.cores);
-    for (uint32_t c = 0; c < cfg.cores; ++c) {
-      cores_.emplace_back(cfg, unit_totals_);
-      for (uint32_t s = cfg.slots_per_core; s-- > 0;) cores_.back().free_slots.push_back(c * cfg.slots_per_core + s);
+  explicit Engine(const EngineParts& p)
+      : cfg_(p.config), replayer_(p.replayer), bvh_(p.bvh), map_(p.bvh, p.config.address_base), source_(p.source),
+        dispatcher_(p.dispatcher), builtin_dispatcher_(p.builtin_dispatcher), sink_(p.sink), cores_(p.cores), ideal_(p.builtin_ideal),
+        avoidance_in_use_(p.avoidance_in_use), timeline_(p.timeline), vcd_(p.vcd) {
+    check_traversal_depth(p.bvh);
+    ray_times_ = p.ray_times;
+    const uint32_t slots = source_id_;  // the slots' ids are 0 .. slots - 1
+    for (const CoreBinding& c : cores_) {
+      l1s_.push_back(c.core->l1());
+      free_count_.push_back(static_cast<uint32_t>(c.core->free_slots.size()));
     }
     slots_.reserve(slots);
     for (uint32_t i = 0; i < slots; ++i)
-      slots_.emplace_back(bvh, replayer.filter(), static_cast<int>(cfg.stack_depth), i / cfg.slots_per_core);
-    counters_.latency_histogram.assign(cfg.latency_buckets, 0);
-    start_emission(0);
+      slots_.emplace_back(p.bvh, p.replayer.filter(), static_cast<int>(p.config.stack_depth),
+                          i / p.config.slots_per_core);
+    if (tracing_) set_up_tracing();
   }
 
-  void advance(uint64_t limit) override {
+  void start() override { source_.start(*this, 0); }
+
+  void advance(const uint64_t& limit) override {
     uint64_t at;
     uint32_t id;
     while (!stopped_ && events_.take(limit, at, id)) {
+      last_handled_ = at;
       const uint32_t next = events_.peek_next();
       if (next < source_id_) prefetch_slot(slots_[next]);
-      if (id == source_id_) source_ready(at);
-      else step(id, at);
+      if (id < source_id_) step(id, at);
+      else if (id < resumed_id_) source_.on_event(id - source_id_, at);
+      else continue_parked(id - resumed_id_, at);
     }
   }
+  uint64_t last_handled() const override { return last_handled_; }
   bool finished() const override { return stopped_ || events_.empty(); }
+  bool complete() const override { return source_.all_done() && in_flight_ == 0; }
   uint64_t next_event_cycle() const override { return events_.empty() ? 0 : events_.next_cycle(); }
   void stop() override { stopped_ = true; }
   bool stopped() const override { return stopped_; }
-  const HwCounters& counters() const override { return counters_; }
   uint64_t rays_in_flight() const override { return in_flight_; }
-  void set_timeline_window(uint64_t first, uint64_t cycles, std::vector<TimelineEvent>* out) override {
-    tl_first_ = first;
-    tl_end_ = first + cycles;
-    timeline_ = out;
+  uint64_t rays_fed() const override { return source_.rays_read(); }
+  uint64_t rays_done() const override { return done_; }
+  uint64_t waiting_for_memory() const override { return parked_; }
+  void resume(uint32_t slot, uint64_t ready) override {
+    --parked_;
+    events_.schedule(ready, resumed_id_ + slot);  // the step's second half runs at `ready`
   }
+  std::string slot_report(size_t max_slots) const override;
 
  private:
   // 64-byte aligned: a step's first host cache line holds the slot's core and
@@ -108,6 +106,9 @@ class Engine final : public CycleEngine {
     uint64_t trace_index = 0;  ///< the ray's position in the feed
     TraceRay tr;
     EmittedRay er;
+    bool parked = false;       ///< its read's data are not known yet (resume() continues it)
+    uint64_t requested = 0;    ///< parked: the cycle its read was issued
+    uint64_t ready = 0, emitted = 0;  ///< when the ray was ready for emission and its emission started
     /// Bytes from the slot's start that a node step reads: the header (core,
     /// request) and the stepper up to its box tester (3 host lines). Leaf steps
     /// read further; prefetching those lines for every step cost more than it
@@ -122,6 +123,30 @@ class Engine final : public CycleEngine {
     for (size_t at = 0; at < Slot::kNodeStepBytes; at += 64) __builtin_prefetch(p + at);
   }
 
+  static constexpr bool kBuiltinUnits = !std::is_same_v<Memory, MemoryReadIf>;
+  // One operation of a core's unit: the built-in module directly, or through its interface.
+  __attribute__((always_inline)) static UnitSchedule box_op(const CoreBinding& c, uint64_t ready, uint64_t now) {
+    if constexpr (kBuiltinUnits) return c.box_builtin->schedule_inline(ready, now);
+    else return c.box->schedule(ready, now);
+  }
+  __attribute__((always_inline)) static UnitSchedule triangle_op(const CoreBinding& c, uint64_t ready, uint64_t now) {
+    if constexpr (kBuiltinUnits) return c.triangle_builtin->schedule_inline(ready, now);
+    else return c.triangle->schedule(ready, now);
+  }
+  __attribute__((always_inline)) static UnitSchedule avoidance_op(const CoreBinding& c, uint64_t ready,
+                                                                  uint64_t now) {
+    if constexpr (kBuiltinUnits) return c.avoidance_builtin->schedule_inline(ready, now);
+    else return c.avoidance->schedule(ready, now);
+  }
+
+  /// Slot `id`'s read of `bytes` at `addr`, issued at `now`.
+  __attribute__((always_inline)) uint64_t read(const Slot& s, uint32_t id, uint64_t addr, uint32_t bytes,
+                                              uint64_t now) {
+    if constexpr (std::is_same_v<Memory, L1Cache>) return l1s_[s.core]->read_direct(addr, bytes, now, id);
+    else if constexpr (std::is_same_v<Memory, IdealMemory>) return ideal_->read_inline(addr, bytes, now, id);
+    else return cores_[s.core].memory->read(addr, bytes, now, id);
+  }
+
   /// Slot `id`'s next step, s.pending, completes at cycle `at`.
   void schedule_step(uint64_t at, uint32_t id) {
     // The step's read looks up its first line's L1 and L2 tag sets when it is
@@ -131,140 +156,150 @@ class Engine final : public CycleEngine {
     // triangles' at the index (for a refill or the end, some triangle's: harmless).
     // The node record itself is not prefetched here: that early, it cost more
     // than it saved (docs/results/speed.md, round 7).
-    if constexpr (std::is_same_v<Memory, MemoryHierarchy>) {
+    if constexpr (std::is_same_v<Memory, L1Cache>) {
       const Slot& s = slots_[id];
       const StepRequest& r = s.pending;
       const size_t is_node = r.kind == StepRequest::Node ? 1 : 0;
-      memory_.prefetch(static_cast<int>(s.core), model_base_[is_node] + model_stride_[is_node] * r.index);
+      l1s_[s.core]->prefetch(model_base_[is_node] + model_stride_[is_node] * r.index);
     }
     events_.schedule(at, id);
   }
 
-  void record(const char* name, uint32_t id, uint64_t start, uint64_t end) {
-    if (!timeline_ || start < tl_first_ || start >= tl_end_) return;
-    timeline_->push_back({name, id / cfg_.slots_per_core, id % cfg_.slots_per_core, start, end, slots_[id].tr.id});
+  // ---- tracing (VCD and timeline; out of line, behind one flag a step) ----
+
+  enum Unit { kBox, kTriangle, kAvoidance, kUnits };
+  /// Per core: the VCD signal (operations in flight) and timeline track of each
+  /// unit, its busy-slot signal and its memory's track.
+  struct CoreTrace {
+    uint32_t unit_signal[kUnits], unit_track[kUnits];
+    uint32_t busy_signal, memory_track;
+  };
+  static const char* instance_name(sc_core::sc_interface* iface, const std::string& fallback) {
+    const auto* o = dynamic_cast<const sc_core::sc_object*>(iface);
+    return o ? o->name() : fallback.c_str();
   }
-
-  // ---- ray source and dispatcher ----
-
-  /// The source starts emitting the next trace ray at cycle `at`.
-  void start_emission(uint64_t at) {
-    if (!feed_(next_tr_)) return;  // end of the trace
-    next_index_ = fed_++;
-    next_er_ = replayer_.emit(next_tr_);
-    uint64_t cost = cfg_.source.issue_interval;
-    if (next_tr_.sign < 0 && next_tr_.parent_prim >= 0) {
-      cost += cfg_.source.sign_bit_cycles;
-      ++counters_.sign_bits_computed;
-    }
-    const uint32_t ops = emission_ops(replayer_.options().method, next_tr_);
-    counters_.emission_ops += ops;
-    cost += uint64_t{ops} * cfg_.source.emission_op_cycles;
-    counters_.source_busy_cycles += cost;
-    events_.schedule(at + cost, source_id_);
-  }
-
-  /// The emitted ray is ready at `at`: dispatch it, or hold it until a slot frees.
-  void source_ready(uint64_t at) {
-    Core* core = pick_core();
-    if (!core) {
-      blocked_ = true;
-      blocked_since_ = at;
-      return;
-    }
-    dispatch(*core, at);
-    start_emission(at);
-  }
-
-  Core* pick_core() {
-    const uint32_t n = cfg_.cores;
-    if (cfg_.dispatch == DispatchPolicy::RoundRobin) {
-      for (uint32_t k = 0; k < n; ++k) {
-        const uint32_t c = (rr_next_ + k) % n;
-        if (!cores_[c].free_slots.empty()) {
-          rr_next_ = (c + 1) % n;
-          return &cores_[c];
-        }
+  void set_up_tracing() {
+    static const char* kSignal = "ops_in_flight";
+    for (const CoreBinding& c : cores_) {
+      const std::string core = c.core->name();
+      const std::string units[kUnits] = {instance_name(c.box, core + ".box_unit"),
+                                         instance_name(c.triangle, core + ".triangle_tester"),
+                                         instance_name(c.avoidance, core + ".avoidance_unit")};
+      CoreTrace t{};
+      for (int u = 0; u < kUnits; ++u) {
+        t.unit_signal[u] = vcd_ ? vcd_->signal(units[u], kSignal) : VcdRecorder::kNoSignal;
+        const std::string thread = units[u].substr(units[u].rfind('.') + 1);
+        t.unit_track[u] = timeline_ ? timeline_->track(core, thread) : TimelineRecorder::kNoTrack;
       }
-      return nullptr;
+      t.busy_signal = vcd_ ? vcd_->signal(core, "busy_slots") : VcdRecorder::kNoSignal;
+      t.memory_track = timeline_ ? timeline_->track(core, "memory reads") : TimelineRecorder::kNoTrack;
+      core_trace_.push_back(t);
     }
-    Core* best = nullptr;
-    for (Core& c : cores_)
-      if (!c.free_slots.empty() && (!best || c.free_slots.size() > best->free_slots.size())) best = &c;
-    return best;
+    if (timeline_)
+      for (uint32_t i = 0; i < source_id_; ++i)
+        slot_track_.push_back(timeline_->track(cores_[i / cfg_.slots_per_core].core->name(),
+                                               "slot " + std::to_string(i % cfg_.slots_per_core)));
+    if (vcd_) {
+      rays_done_signal_ = vcd_->signal("accelerator", "rays_done");
+      in_flight_signal_ = vcd_->signal("accelerator", "rays_in_flight");
+    }
+  }
+  /// Slot `id`'s step `name` over [start, end), whose read (if any) took [asked, ready).
+  __attribute__((noinline, cold)) void trace_step(uint32_t id, const char* name, uint64_t start, uint64_t end,
+                                                  uint64_t asked, uint64_t ready) {
+    if (!timeline_) return;
+    const Slot& s = slots_[id];
+    timeline_->add(slot_track_[id], name, start, end, s.tr.id);
+    if (ready > asked) timeline_->add(core_trace_[s.core].memory_track, name, asked, ready, s.tr.id);
+  }
+  /// One operation of a unit of core `core`.
+  __attribute__((noinline, cold)) void trace_op(uint32_t id, Unit unit, const UnitSchedule& op) {
+    static const char* kNames[kUnits] = {"box", "triangle", "avoidance"};
+    const Slot& s = slots_[id];
+    const CoreTrace& t = core_trace_[s.core];
+    if (vcd_) {
+      vcd_->add(t.unit_signal[unit], op.issue, +1);
+      vcd_->add(t.unit_signal[unit], op.done, -1);
+    }
+    if (timeline_) timeline_->add(t.unit_track[unit], kNames[unit], op.issue, op.done, s.tr.id);
+  }
+  /// A ray entering (+1) or leaving (-1) a slot of core `core` at `at`.
+  __attribute__((noinline, cold)) void trace_occupancy(uint32_t core, uint64_t at, int delta) {
+    if (!vcd_) return;
+    vcd_->add(core_trace_[core].busy_signal, at, delta);
+    vcd_->add(in_flight_signal_, at, delta);
+    if (delta < 0) vcd_->add(rays_done_signal_, at, 1);
   }
 
-  void dispatch(Core& core, uint64_t at) {
-    const uint32_t id = core.free_slots.back();
-    core.free_slots.pop_back();
+  // ---- ray source and dispatcher (the source's SourceHost) ----
+
+  void schedule_source_event(uint32_t id, uint64_t cycle) override { events_.schedule(cycle, source_id_ + id); }
+
+  bool try_dispatch(const SourceRay& ray, uint64_t at) override {
+    const int core = pick_core();
+    if (core < 0) return false;
+    dispatch(static_cast<uint32_t>(core), ray, at);
+    return true;
+  }
+
+  /// The dispatcher's choice of a core with a free slot, or -1.
+  int pick_core() {
+    const uint32_t n = static_cast<uint32_t>(cores_.size());
+    return builtin_dispatcher_ ? builtin_dispatcher_->Dispatcher::pick(free_count_.data(), n)
+                               : dispatcher_.pick(free_count_.data(), n);
+  }
+
+  void dispatch(uint32_t core_index, const SourceRay& ray, uint64_t at) {
+    const CoreBinding& core = cores_[core_index];
+    std::vector<uint32_t>& free = core.core->free_slots;
+    const uint32_t id = free.back();
+    free.pop_back();
+    --free_count_[core_index];
     ++in_flight_;
     Slot& s = slots_[id];
-    s.tr = next_tr_;
-    s.trace_index = next_index_;
-    s.er = next_er_;
+    s.tr = ray.tr;
+    s.trace_index = ray.index;
+    s.er = ray.er;
     s.dispatched = at;
+    s.ready = ray.ready;
+    s.emitted = ray.emitted;
     KindStats& ks = replayer_.stats().by_kind[static_cast<int>(s.tr.kind)];
     s.pending = s.stepper.begin(s.er.ray, replayer_.any_hit(s.tr, s.er), ks.candidates, ks.traversal);
-    const uint64_t issue = core.box.issue(at, at);  // the root box test: bounds latched with the ray
-    record("box", id, issue, issue + core.box.latency());
-    schedule_step(issue + core.box.latency(), id);
+    // The root box test: bounds latched with the ray.
+    const UnitSchedule box = box_op(core, at, at);
+    if (__builtin_expect(tracing_, 0)) {
+      trace_occupancy(core_index, at, +1);
+      trace_step(id, "root box", box.issue, box.done, 0, 0);
+      trace_op(id, kBox, box);
+    }
+    schedule_step(box.done, id);
   }
 
   // ---- a slot's steps ----
 
   void step(uint32_t id, uint64_t now) {
     Slot& s = slots_[id];
-    Core& core = cores_[s.core];
-    const int core_index = static_cast<int>(s.core);
+    const CoreBinding& core = cores_[s.core];
     switch (s.pending.kind) {
       case StepRequest::Node: {
         // The box test below waits for the node record: ask for it before the
         // memory model's work, so that the two overlap on the host.
         __builtin_prefetch(&bvh_.nodes[s.pending.index]);
-        const uint64_t ready = memory_.read(core_index, map_.node(s.pending.index), BvhAddressMap::kNodeBytes, now);
-        ++counters_.node_fetches;
-        counters_.memory_wait_cycles += ready - now;
-        const uint64_t issue = core.box.issue(ready, now);
-        const uint64_t end = issue + core.box.latency();
-        record("node", id, now, end);
-        s.pending = s.stepper.node_step();
-        schedule_step(end, id);
-        return;
+        const uint64_t ready = read(s, id, map_.node(s.pending.index), BvhAddressMap::kNodeBytes, now);
+        if (__builtin_expect(ready == kPendingCycle, 0)) return park(s, now);
+        return node_arrived(s, core, id, now, ready, now);
       }
       case StepRequest::Leaf: {
-        const uint32_t first = s.pending.index, count = s.pending.count;
-        const uint64_t ready = memory_.read(core_index, map_.triangle(first), count * BvhAddressMap::kTriangleBytes, now);
-        ++counters_.leaf_fetches;
-        counters_.memory_wait_cycles += ready - now;
-        uint64_t end = ready, next_ready = ready;
-        for (uint32_t i = 0; i < count; ++i) {
-          const uint64_t issue = core.tri.issue(next_ready, now);
-          next_ready = issue + 1;  // a slot hands its pipelines one triangle per cycle
-          const uint64_t result = issue + core.tri.latency();
-          end = std::max(end, result);
-          const TriangleStepOutcome out = s.stepper.triangle_step(first + i);
-          if (out.suspect && avoidance_in_use_) {
-            const uint64_t a = core.avoid.issue(result, now);
-            ++counters_.avoidance_ops_by_kind[static_cast<int>(s.tr.kind)];
-            record("avoidance", id, a, a + core.avoid.latency());
-            end = std::max(end, a + core.avoid.latency());
-          }
-          if (out.stop) break;
-        }
-        record("leaf", id, now, end);
-        s.pending = s.stepper.leaf_done();
-        schedule_step(end, id);
-        return;
+        const uint64_t ready =
+            read(s, id, map_.triangle(s.pending.index), s.pending.count * BvhAddressMap::kTriangleBytes, now);
+        if (__builtin_expect(ready == kPendingCycle, 0)) return park(s, now);
+        return leaf_arrived(s, core, id, now, ready, now);
       }
       case StepRequest::Refill: {
-        const uint64_t ready = memory_.read(core_index, map_.stack_entry(id, s.pending.index),
-                                            s.pending.count * BvhAddressMap::kStackEntryBytes, now);
-        ++counters_.refill_reads;
-        counters_.refill_wait_cycles += ready - now;
-        record("refill", id, now, ready);
-        s.pending = s.stepper.refilled();
-        schedule_step(ready, id);
-        return;
+        const uint64_t ready = read(s, id, map_.stack_entry(id, s.pending.index),
+                                    s.pending.count * BvhAddressMap::kStackEntryBytes, now);
+        if (__builtin_expect(ready == kPendingCycle, 0)) return park(s, now);
+        return refill_arrived(s, core, id, now, ready);
       }
       case StepRequest::Done:
         finish(id, core, now);
@@ -272,84 +307,166 @@ class Engine final : public CycleEngine {
     }
   }
 
-  void finish(uint32_t id, Core& core, uint64_t now) {
+  // Each step's part after its read: the read was issued at `asked`, its data
+  // are there at `ready`, and the event being handled is at `now`.
+
+  __attribute__((always_inline)) void node_arrived(Slot& s, const CoreBinding& core, uint32_t id, uint64_t asked, uint64_t ready, uint64_t now) {
+    CoreCounters& cc = core.core->counters;
+    ++cc.node_fetches;
+    cc.memory_wait_cycles += ready - asked;
+    const UnitSchedule box = box_op(core, ready, now);
+    if (__builtin_expect(tracing_, 0)) {
+      trace_step(id, "node", asked, box.done, asked, ready);
+      trace_op(id, kBox, box);
+    }
+    s.pending = s.stepper.node_step();
+    schedule_step(box.done, id);
+  }
+
+  __attribute__((always_inline)) void leaf_arrived(Slot& s, const CoreBinding& core, uint32_t id, uint64_t asked, uint64_t ready, uint64_t now) {
+    CoreCounters& cc = core.core->counters;
+    const uint32_t first = s.pending.index, count = s.pending.count;
+    ++cc.leaf_fetches;
+    cc.memory_wait_cycles += ready - asked;
+    uint64_t end = ready, next_ready = ready;
+    for (uint32_t i = 0; i < count; ++i) {
+      const UnitSchedule tri = triangle_op(core, next_ready, now);
+      next_ready = tri.issue + 1;  // a slot hands its pipelines one triangle per cycle
+      end = std::max(end, tri.done);
+      if (__builtin_expect(tracing_, 0)) trace_op(id, kTriangle, tri);
+      const TriangleStepOutcome out = s.stepper.triangle_step(first + i);
+      if (out.suspect && avoidance_in_use_) {
+        const UnitSchedule a = avoidance_op(core, tri.done, now);
+        ++cc.avoidance_ops_by_kind[static_cast<int>(s.tr.kind)];
+        if (__builtin_expect(tracing_, 0)) trace_op(id, kAvoidance, a);
+        end = std::max(end, a.done);
+      }
+      if (out.stop) break;
+    }
+    if (__builtin_expect(tracing_, 0)) trace_step(id, "leaf", asked, end, asked, ready);
+    s.pending = s.stepper.leaf_done();
+    schedule_step(end, id);
+  }
+
+  __attribute__((always_inline)) void refill_arrived(Slot& s, const CoreBinding& core, uint32_t id, uint64_t asked, uint64_t ready) {
+    CoreCounters& cc = core.core->counters;
+    ++cc.refill_reads;
+    cc.refill_wait_cycles += ready - asked;
+    if (__builtin_expect(tracing_, 0)) trace_step(id, "refill", asked, ready, asked, ready);
+    s.pending = s.stepper.refilled();
+    schedule_step(ready, id);
+  }
+
+  /// The slot's read has no known data cycle yet: it waits for resume().
+  void park(Slot& s, uint64_t now) {
+    s.parked = true;
+    s.requested = now;
+    ++parked_;
+  }
+
+  /// Parked slot `id`'s data are there at `now` (resume() scheduled it).
+  void continue_parked(uint32_t id, uint64_t now) {
     Slot& s = slots_[id];
-    const RayOutcome out = replayer_.conclude(s.tr, s.er, s.stepper.hit(), s.stepper.rejected());
-    if (sink_) sink_(s.tr, out, now, s.trace_index);
-    HwCounters& c = counters_;
-    const uint64_t latency = now - s.dispatched;
-    c.slot_cycles += latency;
-    c.latency_min = c.rays == 0 ? latency : std::min(c.latency_min, latency);
-    c.latency_max = std::max(c.latency_max, latency);
-    const uint64_t bucket = std::min<uint64_t>(latency / cfg_.latency_bucket_cycles, c.latency_histogram.size() - 1);
-    ++c.latency_histogram[bucket];
-    ++c.rays;
-    c.cycles = now;
-    c.spills += s.stepper.spills();
-    c.box = unit_totals_.box;
-    c.triangle = unit_totals_.triangle;
-    c.avoidance = unit_totals_.avoidance;
-    --in_flight_;
-    core.free_slots.push_back(id);
-    if (blocked_) {  // the source's held ray takes a slot now
-      blocked_ = false;
-      c.no_free_slot_cycles += now - blocked_since_;
-      dispatch(*pick_core(), now);
-      start_emission(now);
+    const CoreBinding& core = cores_[s.core];
+    s.parked = false;
+    switch (s.pending.kind) {
+      case StepRequest::Node: return node_arrived(s, core, id, s.requested, now, now);
+      case StepRequest::Leaf: return leaf_arrived(s, core, id, s.requested, now, now);
+      case StepRequest::Refill: return refill_arrived(s, core, id, s.requested, now);
+      case StepRequest::Done: return finish(id, core, now);
     }
   }
 
-  const HwConfig cfg_;
+  void finish(uint32_t id, const CoreBinding& core, uint64_t now) {
+    Slot& s = slots_[id];
+    sink_.ray_done(s.tr, s.er, s.stepper.hit(), s.stepper.rejected(), s.dispatched, now, s.trace_index);
+    CoreCounters& cc = core.core->counters;
+    cc.slot_cycles += now - s.dispatched;
+    ++cc.rays;
+    cc.spills += s.stepper.spills();
+    --in_flight_;
+    ++done_;
+    core.core->free_slots.push_back(id);
+    ++free_count_[s.core];
+    if (__builtin_expect(tracing_, 0)) trace_occupancy(s.core, now, -1);
+    if (ray_times_) ray_times_({s.trace_index, s.tr.id, s.tr.parent, s.ready, s.emitted, s.dispatched, now, s.core,
+                                id - cores_[s.core].core->first_slot()});
+    source_.on_finish(s.trace_index, now);  // its children's wait and the window move on
+    source_.on_slot_free(now);              // a held ray takes the slot
+  }
+
+  const HwConfig& cfg_;
   FunctionalReplayer& replayer_;
   const Bvh& bvh_;
-  Memory& memory_;
   BvhAddressMap map_;
-  RayFeed feed_;
-  RayResultSink sink_;
+  RaySource& source_;
+  DispatchIf& dispatcher_;
+  Dispatcher* builtin_dispatcher_;
+  ResultSink& sink_;
+  std::vector<CoreBinding> cores_;
+  std::vector<L1Cache*> l1s_;         // by core: the built-in L1 (Memory = L1Cache)
+  std::vector<uint32_t> free_count_;  // by core: free slots (the dispatcher's view)
+  IdealMemory* ideal_;
   bool avoidance_in_use_;
   // Per kind (0: a leaf's triangles, 1: a node), the modelled address of record `i`: base + stride * i.
   const uint64_t model_base_[2] = {map_.triangle(0), map_.node(0)};
   const uint64_t model_stride_[2] = {BvhAddressMap::kTriangleBytes, BvhAddressMap::kNodeBytes};
-  std::vector<Core> cores_;
-  EventWheel events_{event_ids(cfg_)};
-  uint32_t source_id_ = event_ids(cfg_) - 1;
-  UnitTotals unit_totals_;
+  uint32_t source_id_ = slot_count(cfg_);
+  uint32_t resumed_id_ = source_id_ + source_.event_ids();
+  EventWheel events_{resumed_id_ + source_id_};
   std::vector<Slot> slots_;
-  TraceRay next_tr_;
-  uint64_t next_index_ = 0, fed_ = 0;  // the held ray's trace index; rays read from the feed
-  EmittedRay next_er_;
-  bool blocked_ = false, stopped_ = false;
-  uint64_t blocked_since_ = 0, in_flight_ = 0;
-  uint32_t rr_next_ = 0;
-  HwCounters counters_;
-  std::vector<TimelineEvent>* timeline_ = nullptr;
-  uint64_t tl_first_ = 0, tl_end_ = 0;
+  bool stopped_ = false;
+  uint64_t in_flight_ = 0, done_ = 0, parked_ = 0, last_handled_ = 0;
+  RayTimesSink ray_times_;
+  TimelineRecorder* timeline_;
+  VcdRecorder* vcd_;
+  bool tracing_ = timeline_ || vcd_;
+  std::vector<CoreTrace> core_trace_;
+  std::vector<uint32_t> slot_track_;
+  uint32_t rays_done_signal_ = VcdRecorder::kNoSignal, in_flight_signal_ = VcdRecorder::kNoSignal;
 };
 
+template <class Tester, class Memory>
+std::string Engine<Tester, Memory>::slot_report(size_t max_slots) const {
+  static const char* kinds[] = {"node", "leaf", "refill", "done"};
+  std::ostringstream out;
+  size_t shown = 0;
+  for (uint32_t id = 0; id < slots_.size(); ++id) {
+    const std::vector<uint32_t>& free = cores_[slots_[id].core].core->free_slots;
+    if (std::find(free.begin(), free.end(), id) != free.end()) continue;
+    if (shown++ == max_slots) {
+      out << "  ...\n";
+      break;
+    }
+    const Slot& s = slots_[id];
+    out << "  " << cores_[s.core].core->name() << " slot " << id - cores_[s.core].core->first_slot() << ": ray "
+        << s.tr.id << " (trace position " << s.trace_index << "), dispatched at cycle " << s.dispatched << ", next step "
+        << kinds[s.pending.kind] << " " << s.pending.index;
+    if (s.parked) out << ", waiting since cycle " << s.requested << " for a read";
+    out << "\n";
+  }
+  out << source_.buffer_report();
+  return out.str();
+}
+
 template <class Tester>
-std::unique_ptr<CycleEngine> make_for_tester(const HwConfig& cfg, FunctionalReplayer& replayer, const Bvh& bvh,
-                                             MemoryPort& memory, RayFeed feed, RayResultSink sink) {
-  if (auto* ideal = dynamic_cast<IdealMemory*>(&memory))
-    return std::make_unique<Engine<Tester, IdealMemory>>(cfg, replayer, bvh, *ideal, std::move(feed),
-                                                         std::move(sink));
-  if (auto* caches = dynamic_cast<MemoryHierarchy*>(&memory))
-    return std::make_unique<Engine<Tester, MemoryHierarchy>>(cfg, replayer, bvh, *caches, std::move(feed),
-                                                             std::move(sink));
-  return std::make_unique<Engine<Tester, MemoryPort>>(cfg, replayer, bvh, memory, std::move(feed), std::move(sink));
+std::unique_ptr<CycleEngine> make_for_tester(const EngineParts& p) {
+  bool builtin_units = true;
+  for (const CoreBinding& c : p.cores)
+    builtin_units &= c.box_builtin && c.triangle_builtin && c.avoidance_builtin;
+  if (builtin_units && p.builtin_l1s) return std::make_unique<Engine<Tester, L1Cache>>(p);
+  if (builtin_units && p.builtin_ideal) return std::make_unique<Engine<Tester, IdealMemory>>(p);
+  return std::make_unique<Engine<Tester, MemoryReadIf>>(p);
 }
 
 }  // namespace
 
-std::unique_ptr<CycleEngine> make_cycle_engine(const HwConfig& cfg, FunctionalReplayer& replayer, const Bvh& bvh,
-                                               MemoryPort& memory, RayFeed feed, RayResultSink sink) {
-  switch (replayer.options().tester) {
-    case TesterKind::MollerTrumbore:
-      return make_for_tester<MollerTrumboreTester>(cfg, replayer, bvh, memory, std::move(feed), std::move(sink));
-    case TesterKind::PbrtWatertight:
-      return make_for_tester<PbrtWatertightTester>(cfg, replayer, bvh, memory, std::move(feed), std::move(sink));
+std::unique_ptr<CycleEngine> make_cycle_engine(const EngineParts& p) {
+  switch (p.replayer.options().tester) {
+    case TesterKind::MollerTrumbore: return make_for_tester<MollerTrumboreTester>(p);
+    case TesterKind::PbrtWatertight: return make_for_tester<PbrtWatertightTester>(p);
     case TesterKind::ThreeHalfPlane:
-    default:
-      return make_for_tester<ThreeHalfPlaneTester>(cfg, replayer, bvh, memory, std::move(feed), std::move(sink));
+    default: return make_for_tester<ThreeHalfPlaneTester>(p);
   }
 }
 

@@ -1,68 +1,107 @@
-// CycleEngine: the cycle-level model of the accelerator as plain C++ state,
-// advanced event by event (no per-cycle tick: time jumps to the next step that
-// completes). A SystemC process drives it (hw/systemc_driver.h); tests may too.
+// CycleEngine: the one scheduler that keeps the accelerator's time. It owns the
+// calendar queue of pending events (a busy slot's next step, the ray source)
+// and the slots' ray records and BvhSteppers, and handles events in cycle order
+// (within a cycle in scheduling order), calling the units of the accelerator's
+// modules (hw/accelerator.h) for when each step happens and the datapath's
+// BvhStepper for what it does. It never visits an idle cycle. The Accelerator's
+// SC_METHOD drives it (advance) and keeps SystemC time in step.
 //
-// Modules (docs/hw-model.md has their timing):
-//   ray source   reads trace rays through the ray-emission step (FunctionalReplayer::emit),
-//                charging issue_interval + sign-bit and emission-op cycles per ray
-//   dispatcher   hands the emitted ray to a free slot (round-robin or least-loaded)
-//   cores        R slots each, a BvhStepper per slot; box, triangle and avoidance
-//                pipelines (UnitPipelines); fetches through the MemoryPort at the
-//                addresses of BvhAddressMap
-//   result sink  FunctionalReplayer::conclude (verdict, statistics), per-ray latency
-// The hits are those of the functional replay: the steps are the datapath's.
+// Steps of a slot (docs/hw-model.md has their timing): the root box at
+// dispatch, a node (read it, test both child boxes), a leaf (read its
+// triangles, test each, send suspects to the avoidance unit), a stack refill,
+// and done (the result sink). A read whose data come later (approximately timed
+// memory) parks the slot until resume().
 #pragma once
-#include <atomic>
 #include <cstdint>
-#include <functional>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "hw/hw_config.h"
 #include "hw/hw_counters.h"
-#include "hw/memory_port.h"
+#include "hw/ray_feed.h"
+#include "hw/timeline_recorder.h"
+#include "hw/unit_interfaces.h"
+#include "hw/vcd_recorder.h"
 #include "replay/functional_replayer.h"
 #include "scene/bvh.h"
 
 namespace vbsim::hw {
 
-/// Gives the next trace ray; false at the end of the trace.
-using RayFeed = std::function<bool(TraceRay&)>;
-/// Receives every finished ray, in completion order (may be empty);
-/// `trace_index` is the ray's position in the feed (0 for the first ray).
-using RayResultSink =
-    std::function<void(const TraceRay&, const RayOutcome&, uint64_t finish_cycle, uint64_t trace_index)>;
-
-/// One busy interval of a unit or slot, for the timeline (see set_timeline_window).
-struct TimelineEvent {
-  const char* name;  ///< "node", "leaf", "refill", "box", "triangle", "avoidance"
-  uint32_t core, slot;  ///< slot: the slot index within its core
-  uint64_t start, end;
-  int64_t ray_id;
-};
+class Dispatcher;
+class IdealMemory;
+class PipelineUnit;
+class RaySource;
+class RayTestCore;
+class ResultSink;
 
 class CycleEngine {
  public:
   virtual ~CycleEngine() = default;
-  /// Processes every event before cycle `limit`.
-  virtual void advance(uint64_t limit) = 0;
-  /// True when every ray has finished (or the run was stopped).
+  /// The source starts emitting the first ray at cycle 0 (once, before advance).
+  virtual void start() = 0;
+  /// Handles every event before cycle `limit`, which may be lowered while it
+  /// runs (an approximately timed request bounds how far ahead it may go).
+  virtual void advance(const uint64_t& limit) = 0;
+  /// The cycle of the last event handled.
+  virtual uint64_t last_handled() const = 0;
+  /// True when no event is pending (or the run was stopped). Rays may still
+  /// wait for memory (waiting_for_memory()).
   virtual bool finished() const = 0;
+  /// True when every ray the source read has finished and the trace has ended.
+  virtual bool complete() const = 0;
   /// Cycle of the next event; meaningful when !finished().
   virtual uint64_t next_event_cycle() const = 0;
   /// Ends the run at the next advance: rays in flight are dropped.
   virtual void stop() = 0;
   virtual bool stopped() const = 0;
-  virtual const HwCounters& counters() const = 0;
-  /// Rays currently in slots.
+  /// Rays currently in slots; rays finished; rays the source has read from the trace.
   virtual uint64_t rays_in_flight() const = 0;
-  /// Records busy intervals that start in [first, first + cycles) into `out` (null: none).
-  virtual void set_timeline_window(uint64_t first, uint64_t cycles, std::vector<TimelineEvent>* out) = 0;
+  virtual uint64_t rays_done() const = 0;
+  virtual uint64_t rays_fed() const = 0;
+  /// Slots parked on a read whose data are not known yet.
+  virtual uint64_t waiting_for_memory() const = 0;
+  /// The pending read of slot `slot` has its data at `ready` (>= the cycle being handled).
+  virtual void resume(uint32_t slot, uint64_t ready) = 0;
+  /// Every busy slot's state, for the report of a run that stopped making progress.
+  virtual std::string slot_report(size_t max_slots) const = 0;
 };
 
-/// The engine for `cfg`. `replayer` does emission, the filter, verdicts and the
-/// per-kind statistics; `bvh` must be the replayer's; all must outlive the engine.
-/// Throws std::runtime_error when the BVH is deeper than the traversal stack.
-std::unique_ptr<CycleEngine> make_cycle_engine(const HwConfig& cfg, FunctionalReplayer& replayer, const Bvh& bvh,
-                                               MemoryPort& memory, RayFeed feed, RayResultSink sink);
+/// A core as the scheduler reaches it: its module and, per unit, the built-in
+/// module (called directly) or the interface a replacement implements.
+struct CoreBinding {
+  RayTestCore* core;
+  PipelineUnit* box_builtin;
+  PipelineIf* box;
+  PipelineUnit* triangle_builtin;
+  PipelineIf* triangle;
+  PipelineUnit* avoidance_builtin;
+  PipelineIf* avoidance;
+  MemoryReadIf* memory;
+};
+
+/// What the scheduler runs: every unit of one accelerator.
+struct EngineParts {
+  const HwConfig& config;
+  FunctionalReplayer& replayer;
+  const Bvh& bvh;
+  RaySource& source;       ///< the built-in ray source (called directly)
+  DispatchIf& dispatcher;
+  Dispatcher* builtin_dispatcher;  ///< `dispatcher` when it is the built-in one (called directly), else null
+  ResultSink& sink;        ///< the built-in result sink (called directly)
+  std::vector<CoreBinding> cores;
+  /// All cores' memory ports reach the built-in L1s / one built-in ideal memory
+  /// (then reads are direct calls); otherwise through MemoryReadIf.
+  bool builtin_l1s = false;
+  IdealMemory* builtin_ideal = nullptr;
+  bool avoidance_in_use = false;  ///< validity-bit with a policy that tests suspects
+  TimelineRecorder* timeline = nullptr;
+  VcdRecorder* vcd = nullptr;
+  RayTimesSink ray_times;  ///< every finished ray's cycles (may be empty)
+};
+
+/// The scheduler for `parts` (which outlive it). Throws std::runtime_error when
+/// the BVH is deeper than the traversal stack or the slots are too many.
+std::unique_ptr<CycleEngine> make_cycle_engine(const EngineParts& parts);
 
 }  // namespace vbsim::hw

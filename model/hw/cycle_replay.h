@@ -1,16 +1,20 @@
-// Cycle-level replay: a stream of trace rays through the cycle engine under
-// SystemC, with the same emission, filter, verdicts and statistics as the
-// functional replay, plus the `hw` section. Shared by `vbsim replay --mode
-// cycle`, `vbsim bench --mode cycle` and the tests.
+// Cycle-level replay: a stream of trace rays through the accelerator model
+// (hw/accelerator.h) in a fresh SystemC simulation context, with the same
+// emission, filter, verdicts and statistics as the functional replay, plus the
+// `hw` section. Shared by `vbsim replay --mode cycle`, `vbsim bench --mode
+// cycle`, `vbsim score --mode cycle` and the tests; any number of runs one
+// after the other in one process (never from several threads at once).
 #pragma once
+#include <atomic>
+#include <functional>
 #include <string>
-#include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "hw/accelerator_units.h"
 #include "hw/cycle_engine.h"
 #include "hw/hw_config.h"
-#include "hw/systemc_driver.h"
+#include "hw/ray_feed.h"
 #include "replay/replay_options.h"
 #include "replay/replay_stats.h"
 #include "scene/bvh.h"
@@ -18,12 +22,24 @@
 
 namespace vbsim::hw {
 
+/// A window of cycles to record, and the instances to record it for.
+struct TraceWindow {
+  std::string path;         ///< output file (empty: none)
+  uint64_t first = 0;       ///< first cycle
+  uint64_t cycles = 2000;   ///< cycles in the window
+  std::string scope;        ///< hierarchical name prefix of the instances kept (empty: all)
+};
+
 struct CycleRunOptions {
-  DriveOptions drive;                ///< VCD, stop flag, progress callback
-  std::string timeline;              ///< Chrome trace-event JSON of a cycle window (empty: none)
-  uint64_t timeline_first = 0;       ///< first cycle of the window
-  uint64_t timeline_cycles = 2000;   ///< cycles in the window
-  bool track_parents = true;         ///< keep parent rays (FunctionalReplayer::set_track_parents)
+  const std::atomic<bool>* stop = nullptr;  ///< set (e.g. by SIGINT) to end the run early
+  /// Called about every quarter second of wall time with the scheduler (e.g. a progress bar).
+  std::function<void(const CycleEngine&)> progress;
+  TraceWindow vcd;        ///< per-instance values at cycle resolution (VCD)
+  TraceWindow timeline;   ///< busy intervals by instance (Chrome trace-event JSON)
+  bool track_parents = true;  ///< keep parent rays (FunctionalReplayer::set_track_parents)
+  RayLocator locator;         ///< names a ray's line in errors the model finds (may be empty)
+  RayTimesSink ray_times;     ///< every finished ray's cycles (may be empty)
+  AcceleratorUnits units;     ///< replaced units (none by default)
 };
 
 struct CycleRunResult {
@@ -33,13 +49,11 @@ struct CycleRunResult {
   HwCounters counters;
 };
 
-/// Replays the rays `feed` gives on `scene`/`bvh`. Throws what make_memory
-/// throws (e.g. a memory model this build lacks) before any ray is read.
+/// Replays the rays `feed` gives on `scene`/`bvh`. Throws std::invalid_argument
+/// naming the field for a configuration the model cannot build, before any ray
+/// is read; std::runtime_error when the run stops making progress (a report of
+/// the stuck slots) or loses a ray.
 CycleRunResult run_cycle_replay(const RayFeed& feed, const Scene& scene, const Bvh& bvh, const ReplayOptions& opt,
                                 const HwConfig& cfg, const RayResultSink& sink, const CycleRunOptions& options);
-
-/// Writes `events` as Chrome trace-event JSON (one process per core, one thread
-/// per slot; 1 us on the viewer's time axis = 1 cycle).
-void write_timeline(const std::string& path, const std::vector<TimelineEvent>& events);
 
 }  // namespace vbsim::hw

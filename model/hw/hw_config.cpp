@@ -56,6 +56,13 @@ void read_memory(Fields& parent, MemoryConfig& m) {
   if (!(m.dram_bytes_per_cycle > 0 && m.dram_bytes_per_cycle <= 4096))
     fail(parent.file(), field + ".dram_bytes_per_cycle", "must be in (0, 4096]");
   f.integer("dram_max_outstanding", m.dram_max_outstanding, 1, 65536);
+  f.name("tlm", [&](const std::string& s) {
+    if (s == "lt") m.tlm = TlmStyle::LooselyTimed;
+    else if (s == "at") m.tlm = TlmStyle::ApproximatelyTimed;
+    else return false;
+    return true;
+  });
+  f.integer("at_lookahead_cycles", m.at_lookahead_cycles, 1, 1000000);
   check_cache(parent.file(), field + ".l1", m.l1);
   check_cache(parent.file(), field + ".l2", m.l2);
 }
@@ -112,6 +119,16 @@ void apply_hw_config(const nlohmann::json& j, const std::string& file, HwConfig&
     fs.integer("issue_interval", cfg.source.issue_interval, 1, 100000);
     fs.integer("sign_bit_cycles", cfg.source.sign_bit_cycles, 0, 100000);
     fs.integer("emission_op_cycles", cfg.source.emission_op_cycles, 0, 100000);
+    fs.integer("rays_per_cycle", cfg.source.rays_per_cycle, 1, 64);
+    fs.integer("window", cfg.source.window, 1, 1u << 20);
+    fs.boolean("dependencies", cfg.source.dependencies);
+    fs.boolean("bundles", cfg.source.bundles);
+    fs.integer("bundle_cycles", cfg.source.bundle_cycles, 0, 100000);
+    fs.integer("bundle_max", cfg.source.bundle_max, 1, 64);
+  }
+  if (const auto* s = f.get("shader")) {
+    Fields fs(*s, file, "hw.shader");
+    fs.integer("latency_cycles", cfg.shader.latency_cycles, 0, 1000000);
   }
   read_unit(f, "box", cfg.box);
   read_unit(f, "triangle", cfg.triangle);
@@ -156,7 +173,14 @@ nlohmann::json hw_config_json(const HwConfig& c) {
           {"source",
            {{"issue_interval", c.source.issue_interval},
             {"sign_bit_cycles", c.source.sign_bit_cycles},
-            {"emission_op_cycles", c.source.emission_op_cycles}}},
+            {"emission_op_cycles", c.source.emission_op_cycles},
+            {"rays_per_cycle", c.source.rays_per_cycle},
+            {"window", c.source.window},
+            {"dependencies", c.source.dependencies},
+            {"bundles", c.source.bundles},
+            {"bundle_cycles", c.source.bundle_cycles},
+            {"bundle_max", c.source.bundle_max}}},
+          {"shader", {{"latency_cycles", c.shader.latency_cycles}}},
           {"box", unit(c.box)},
           {"triangle", unit(c.triangle)},
           {"avoidance", unit(c.avoidance)},
@@ -167,7 +191,9 @@ nlohmann::json hw_config_json(const HwConfig& c) {
             {"l2", cache(m.l2)},
             {"dram_latency", m.dram_latency},
             {"dram_bytes_per_cycle", m.dram_bytes_per_cycle},
-            {"dram_max_outstanding", m.dram_max_outstanding}}},
+            {"dram_max_outstanding", m.dram_max_outstanding},
+            {"tlm", tlm_style_name(m.tlm)},
+            {"at_lookahead_cycles", m.at_lookahead_cycles}}},
           {"sim",
            {{"quantum_cycles", c.quantum_cycles},
             {"latency_bucket_cycles", c.latency_bucket_cycles},

@@ -8,7 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "hw/memory_port.h"
+#include "hw/memory_config.h"
 
 namespace vbsim::hw {
 
@@ -21,9 +21,27 @@ struct UnitConfig {
 
 /// The ray source: the ray-emission interface in front of the dispatcher.
 struct SourceConfig {
-  uint32_t issue_interval = 1;      ///< cycles per ray emitted, at least
+  uint32_t issue_interval = 1;      ///< cycles one emission lane takes per ray, at least
   uint32_t sign_bit_cycles = 1;     ///< extra cycles when the trace omits a child's sign bit
   uint32_t emission_op_cycles = 4;  ///< extra cycles per emission-time method acting on a ray
+  uint32_t rays_per_cycle = 1;      ///< emission lanes: rays that may start emission in one cycle
+  /// Rays the ray-emission buffer looks ahead beyond the oldest unfinished one.
+  uint32_t window = 4096;
+  /// A child ray waits for its parent's result (plus the shading latency);
+  /// false: every ray independent, as a trace of unrelated queries.
+  bool dependencies = true;
+  /// Consecutive trace rays with the same parent and origin go through one
+  /// bundle call of the emission API (the patent's "emit a bundle of rays").
+  bool bundles = false;
+  uint32_t bundle_cycles = 0;       ///< a bundle call's own cycles, on top of its rays'
+  uint32_t bundle_max = 8;          ///< rays in one bundle at most
+};
+
+/// The shaders that emit child rays (outside the accelerator).
+struct ShaderConfig {
+  /// Cycles from a parent ray's result reaching the result sink to its
+  /// children being ready for emission.
+  uint32_t latency_cycles = 200;
 };
 
 enum class DispatchPolicy { RoundRobin, LeastLoaded };
@@ -38,6 +56,7 @@ struct HwConfig {
   DispatchPolicy dispatch = DispatchPolicy::LeastLoaded;
   uint64_t address_base = 0;     ///< byte address of node 0 (multiple of 64)
   SourceConfig source;
+  ShaderConfig shader;
   UnitConfig box{1, 8, 1};
   UnitConfig triangle{1, 20, 1};
   UnitConfig avoidance{1, 6, 1};

@@ -15,6 +15,44 @@ struct UnitCounters {
   uint64_t wait_cycles = 0;  ///< cycles operations waited for a free pipeline ("pipeline full")
 };
 
+/// SystemC's view of one run.
+struct SystemCRun {
+  double start_ps = 0, end_ps = 0;  ///< SystemC time at the run's start and end
+  uint64_t cycles = 0;              ///< (end - start) / period, as SystemC measured it
+  uint64_t activations = 0;         ///< activations of the scheduler process
+  double period_ps = 0;
+};
+
+/// What one ray-test core counted (its units and L1 count their own).
+struct CoreCounters {
+  uint64_t rays = 0;                ///< rays finished on this core
+  uint64_t slot_cycles = 0;         ///< sum over its rays of cycles in a slot (dispatch to result)
+  uint64_t node_fetches = 0, leaf_fetches = 0, refill_reads = 0;
+  uint64_t memory_wait_cycles = 0;  ///< node and leaf fetches: cycles from request to data
+  uint64_t refill_wait_cycles = 0;  ///< stack refill reads: cycles from request to data
+  uint64_t spills = 0;              ///< stack entries pushed past the on-chip depth
+  std::array<uint64_t, kRayKindCount> avoidance_ops_by_kind{};  ///< suspects sent to its avoidance unit
+};
+
+/// What the ray source counted.
+struct SourceCounters {
+  uint64_t rays = 0;                ///< rays emitted
+  uint64_t busy_cycles = 0;         ///< cycles spent emitting (interval, sign bits, emission ops)
+  uint64_t sign_bits_computed = 0;  ///< rays whose sign bit the source computed
+  uint64_t emission_ops = 0;        ///< emission-time method operations charged
+  uint64_t no_free_slot_cycles = 0; ///< cycles a ready ray waited because no slot was free
+};
+
+/// What the result sink counted.
+struct SinkCounters {
+  uint64_t rays = 0;         ///< rays finished
+  uint64_t last_cycle = 0;   ///< cycle the last ray finished
+  uint64_t latency_sum = 0;  ///< sum of dispatch-to-result latencies
+  uint64_t latency_min = 0, latency_max = 0;
+  std::vector<uint64_t> latency_histogram;  ///< rays per latency bucket (the last one open-ended)
+};
+
+/// The chip-wide totals of one run, summed from the modules' counters.
 struct HwCounters {
   uint64_t cycles = 0;            ///< cycle at which the last ray finished
   uint64_t rays = 0;              ///< rays finished

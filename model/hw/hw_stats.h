@@ -6,7 +6,6 @@
 
 #include "hw/hw_config.h"
 #include "hw/hw_counters.h"
-#include "hw/systemc_driver.h"
 #include "replay/replay_stats.h"
 
 namespace vbsim::hw {
@@ -15,8 +14,8 @@ struct HwReport {
   const HwCounters& counters;
   const HwConfig& config;
   const ReplayStats& replay;      ///< per-kind avoidance counters
-  const nlohmann::json& memory;   ///< MemoryPort::stats()
-  const DriveResult& systemc;
+  const nlohmann::json& memory;   ///< Accelerator::memory_stats()
+  const SystemCRun& systemc;
 };
 
 /// cycles, rays_per_cycle, rays_per_s, utilisation, stalls, memory, avoidance, latency, systemc.

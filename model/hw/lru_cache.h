@@ -75,6 +75,18 @@ class LruCache {
     return replaced;
   }
 
+  /// Sets the fill cycle of `line` (present or not) to `fill` without touching
+  /// its recency: the answer to a miss that was allocated before its fill cycle
+  /// was known (kPendingCycle of hw/unit_interfaces.h). False when the line has
+  /// left the array meanwhile.
+  bool set_fill(uint64_t line, uint64_t fill) {
+    Way* set = set_at_index(set_of(line), ways_);
+    const uint32_t w = find_in(set, line, ways_);
+    if (w == ways_) return false;
+    set[w].fill = fill;
+    return true;
+  }
+
   /// Asks the host's caches for the set of `line` (no effect on any result).
   void prefetch(uint64_t line) const {
     const char* p = reinterpret_cast<const char*>(set_at_index(set_of(line), ways_));

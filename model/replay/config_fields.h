@@ -71,11 +71,12 @@ class Fields {
       out = v->get<bool>();
     }
   }
+  /// A name `parse` accepts; the error lists `choices` (e.g. "a, b, c") when given.
   template <class Parse>
-  void name(const std::string& key, Parse parse) {
+  void name(const std::string& key, Parse parse, const std::string& choices = "") {
     if (const auto* v = get(key)) {
       if (!v->is_string() || !parse(v->get<std::string>()))
-        fail(file_, path(key), "unknown value " + v->dump());
+        fail(file_, path(key), "unknown value " + v->dump() + (choices.empty() ? "" : "; one of: " + choices));
     }
   }
   const std::string& file() const { return file_; }

@@ -16,23 +16,35 @@ namespace {
 using config_fields::fail;
 using config_fields::Fields;
 
+/// "none, tmin, ..." and how to combine them, for the error on an unknown method.
+std::string method_choices() {
+  std::string s;
+  for (const std::string& n : method_names()) s += (s.empty() ? "" : ", ") + n;
+  return s + " (or several joined by '+')";
+}
+
 }  // namespace
 
 void apply_replay_config(const nlohmann::json& j, const std::string& file, ReplayOptions& opt) {
   SelfIntersectionMethod& m = opt.method;
   Fields f(j, file, "");
-  f.name("method", [&](const std::string& s) {
-    SelfIntersectionMethod fresh = m;
-    fresh.tmin = fresh.primid = fresh.offset_normal = fresh.offset_direction = false;
-    fresh.offset_adaptive = fresh.offset_errbound = fresh.validity_bit = false;
-    fresh.shading_position = fresh.shading_position_always = fresh.reverse_shadow = false;
-    std::string err;
-    if (!parse_method(s, fresh, err)) return false;
-    m = fresh;
-    return true;
-  });
-  f.name("tester", [&](const std::string& s) { return parse_tester(s, opt.tester); });
-  f.name("hitpoint", [&](const std::string& s) { return parse_hit_point_mode(s, opt.hit_point); });
+  f.name(
+      "method",
+      [&](const std::string& s) {
+        SelfIntersectionMethod fresh = m;
+        fresh.tmin = fresh.primid = fresh.offset_normal = fresh.offset_direction = false;
+        fresh.offset_adaptive = fresh.offset_errbound = fresh.validity_bit = false;
+        fresh.shading_position = fresh.shading_position_always = fresh.reverse_shadow = false;
+        std::string err;
+        if (!parse_method(s, fresh, err)) return false;
+        m = fresh;
+        return true;
+      },
+      method_choices());
+  f.name("tester", [&](const std::string& s) { return parse_tester(s, opt.tester); },
+         "three-half-plane, moller-trumbore, pbrt-watertight");
+  f.name("hitpoint", [&](const std::string& s) { return parse_hit_point_mode(s, opt.hit_point); },
+         "given, ray, barycentric");
   f.boolean("shadow_any_hit", opt.any_hit_for_shadow);
   f.number("tmin_eps", m.tmin_eps);
   f.number("offset_normal_eps", m.offset_normal_eps);
@@ -40,6 +52,9 @@ void apply_replay_config(const nlohmann::json& j, const std::string& file, Repla
   f.get("bits_per_ray");  // derived; accepted so a stats file's config can be fed back
   f.get("cost_ops");      // derived, likewise
   f.get("hw");  // the cycle-level model's settings: read by hw/hw_config.h in cycle mode
+  // What a stats file's config records about the run's inputs: accepted so the
+  // block can be fed back, and ignored (the command line names the inputs).
+  for (const char* descriptive : {"trace", "scene", "triangles", "size", "light"}) f.get(descriptive);
   if (const auto* a = f.get("adaptive")) {
     Fields fa(*a, file, "adaptive");
     fa.number("origin", m.adaptive.origin);
@@ -49,8 +64,10 @@ void apply_replay_config(const nlohmann::json& j, const std::string& file, Repla
   if (const auto* vb = f.get("validity_bit")) {
     AvoidanceConfig& c = m.avoidance;
     Fields fv(*vb, file, "validity_bit");
-    fv.name("policy", [&](const std::string& s) { return parse_avoidance_policy(s, c.policy); });
-    fv.name("eps_mode", [&](const std::string& s) { return parse_epsilon_mode(s, c.eps_mode); });
+    fv.name("policy", [&](const std::string& s) { return parse_avoidance_policy(s, c.policy); },
+            "all, vote, sign-only");
+    fv.name("eps_mode", [&](const std::string& s) { return parse_epsilon_mode(s, c.eps_mode); },
+            "fixed, exponent");
     fv.number("eps", c.eps);
     fv.integer("guard_bits", c.guard_bits);
     fv.integer("min_exponent", c.min_exponent);
@@ -91,6 +108,8 @@ nlohmann::json read_config_json(const std::string& path) {
   } catch (const nlohmann::json::parse_error& e) {
     throw ConfigError(fmt::format("{}: not valid JSON: {}", path, e.what()));
   }
+  // A whole stats file: its `config` block is the configuration.
+  if (j.is_object() && j.contains("config") && j["config"].is_object()) j = j["config"];
   if (!regular) pipes[path] = j;
   return j;
 }

@@ -18,9 +18,13 @@ struct ConfigError : std::runtime_error {
 /// Applies the fields present in `j` onto `opt` (absent fields keep their
 /// values). Throws ConfigError "FILE: field 'a.b': reason" on a wrong type,
 /// an unknown name or an out-of-range value; unknown fields are errors too.
+/// The fields a stats file's config derives or records (bits_per_ray,
+/// cost_ops, trace, scene, triangles, size, light) are accepted and ignored.
 void apply_replay_config(const nlohmann::json& j, const std::string& file, ReplayOptions& opt);
 
-/// Reads a JSON config file; ConfigError when it cannot be read or parsed.
+/// Reads a JSON config file; ConfigError when it cannot be read or parsed. A
+/// stats file (an object with a `config` object) gives its `config` block, so a
+/// run's statistics can configure the next run.
 nlohmann::json read_config_json(const std::string& path);
 
 /// Reads and applies a JSON config file.

@@ -38,7 +38,7 @@ void check_hits_stream(const std::ostream& hits, const std::string& path) {
 std::string partial_hits_marker(uint64_t rays) { return fmt::format("{{\"partial\":true,\"rays\":{}}}\n", rays); }
 
 ReplayStats run_replay(TraceSource& source, const SceneAndBvh& sb, const ReplayOptions& opt,
-                       std::ostream* hits, const std::atomic<bool>* stop) {
+                       std::ostream* hits, const std::atomic<bool>* stop, const ReplayProgress& progress) {
   source.set_triangle_count(sb.scene.size());
   FunctionalReplayer replayer(sb.scene, sb.bvh, opt);
   const auto start = std::chrono::steady_clock::now();
@@ -51,6 +51,7 @@ ReplayStats run_replay(TraceSource& source, const SceneAndBvh& sb, const ReplayO
       *hits << hit_json_line(tr, out);
       check_hits_stream(*hits, "hits output");
     }
+    if (progress && rays_read % kProgressRays == 0) progress(rays_read);
     if (stop && stop->load(std::memory_order_relaxed)) {
       replayer.stats().partial = true;
       break;

@@ -3,6 +3,8 @@
 // system tests.
 #pragma once
 #include <atomic>
+#include <cstdint>
+#include <functional>
 #include <memory>
 #include <ostream>
 #include <string>
@@ -38,12 +40,18 @@ auto replay_at_trace_ray(const TraceSource& source, Step&& step) -> decltype(ste
   }
 }
 
+/// Called with the number of rays replayed so far, every kProgressRays rays.
+using ReplayProgress = std::function<void(uint64_t rays)>;
+constexpr uint64_t kProgressRays = 4096;
+
 /// Replays every ray of `source` (whose scene is `sb`) and returns the stats.
 /// Each ray's hit line goes to `hits` when it is not null. `stop` (may be
-/// null) ends the run early; the stats are then marked partial. Checks that
-/// every ray read is counted (ConservationError otherwise).
+/// null) ends the run early; the stats are then marked partial. `progress`
+/// (may be empty) is told how far the replay has come. Checks that every ray
+/// read is counted (ConservationError otherwise).
 ReplayStats run_replay(TraceSource& source, const SceneAndBvh& sb, const ReplayOptions& opt,
-                       std::ostream* hits, const std::atomic<bool>* stop = nullptr);
+                       std::ostream* hits, const std::atomic<bool>* stop = nullptr,
+                       const ReplayProgress& progress = {});
 
 /// Throws OutputError "PATH: write failed: REASON" when `hits` is in a failed
 /// state (a full disk): a run stops at its first failed write.

@@ -35,7 +35,7 @@ constexpr uint8_t kGuardByte = 'G';
 }  // namespace
 
 void write_ply_scene(const std::string& path, const std::vector<Triangle>& triangles,
-                     const std::vector<std::array<Vec3f, 3>>& normals) {
+                     const std::vector<std::array<Vec3f, 3>>& normals, const std::string& comment) {
   const bool with_normals = !normals.empty();
   if (with_normals && normals.size() != triangles.size())
     throw SceneError(fmt::format("{}: {} normal triples for {} triangles", path, normals.size(),
@@ -44,6 +44,9 @@ void write_ply_scene(const std::string& path, const std::vector<Triangle>& trian
       "ply\nformat binary_little_endian 1.0\ncomment written by vbsim: 3 vertices per triangle, "
       "in triangle order\nelement vertex {}\nproperty uchar guard\nproperty float x\nproperty float y\nproperty float z\n",
       3 * triangles.size());
+  if (comment.find_first_of("\r\n") != std::string::npos)
+    throw SceneError(fmt::format("{}: a PLY comment must be one line", path));
+  if (!comment.empty()) out.insert(out.find("element vertex"), "comment " + comment + "\n");
   if (with_normals) out += "property float nx\nproperty float ny\nproperty float nz\n";
   out += fmt::format("element face {}\nproperty list uchar int vertex_indices\nend_header\n",
                      triangles.size());

@@ -19,9 +19,10 @@
 namespace vbsim {
 
 /// Writes `triangles` (and per-corner `normals`, empty or one per triangle) to
-/// `path`. Throws SceneError naming the file when it cannot be written or the
-/// normals do not match the triangles.
+/// `path`, with `comment` (one line, may be empty) as a header comment. Throws
+/// SceneError naming the file when it cannot be written or the normals do not
+/// match the triangles.
 void write_ply_scene(const std::string& path, const std::vector<Triangle>& triangles,
-                     const std::vector<std::array<Vec3f, 3>>& normals = {});
+                     const std::vector<std::array<Vec3f, 3>>& normals = {}, const std::string& comment = "");
 
 }  // namespace vbsim

@@ -69,7 +69,7 @@ nlohmann::json parse_value(const std::string& entry, const std::string& key, con
 
 }  // namespace
 
-MethodSpec parse_method_spec(const std::string& entry) {
+nlohmann::json method_spec_json(const std::string& entry) {
   std::stringstream in(entry);
   std::string part;
   std::getline(in, part, ':');
@@ -86,9 +86,13 @@ MethodSpec parse_method_spec(const std::string& entry) {
     nlohmann::json& field = target.path[1] ? j[target.path[0]][target.path[1]] : j[target.path[0]];
     field = parse_value(entry, key, part.substr(eq + 1), target.kind);
   }
+  return j;
+}
+
+MethodSpec parse_method_spec(const std::string& entry) {
   MethodSpec spec;
   spec.label = entry;
-  apply_replay_config(j, fmt::format("method entry '{}'", entry), spec.options);
+  apply_replay_config(method_spec_json(entry), fmt::format("method entry '{}'", entry), spec.options);
   return spec;
 }
 

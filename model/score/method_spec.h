@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "replay/replay_options.h"
 
 namespace vbsim {
@@ -20,6 +22,11 @@ struct MethodSpec {
   std::string label;  ///< the entry as written: the row label of a score table
   ReplayOptions options;
 };
+
+/// One entry as the configuration fields it sets (`method` and its KEYs'
+/// fields, as in a config file), not yet validated; throws ConfigError naming
+/// the entry on a malformed KEY=VALUE or an unknown key.
+nlohmann::json method_spec_json(const std::string& entry);
 
 /// Parses one entry; throws ConfigError naming the entry and the bad key or value.
 MethodSpec parse_method_spec(const std::string& entry);

@@ -30,7 +30,8 @@ bool is_trace_file(const fs::path& p) {
 
 /// Replays one trace with every configuration, adding into cells[0..configs).
 void score_trace(const std::string& path, const std::vector<ScoreConfig>& configs,
-                 std::vector<CandidateFilter>& filters, ScoreCell* cells, int threads, int64_t parent_window) {
+                 std::vector<CandidateFilter>& filters, ScoreCell* cells, int threads,
+                 const ScoreProgress& progress, int64_t parent_window) {
   auto source = open_trace(path);
   const SceneAndBvh sb = load_trace_scene(source->header());
   check_traversal_depth(sb.bvh);
@@ -47,6 +48,7 @@ void score_trace(const std::string& path, const std::vector<ScoreConfig>& config
       }
       stats[c].wall_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     });
+    if (progress) progress(blocks.rays().size());
   }
   for (size_t c = 0; c < configs.size(); ++c) {
     check_ray_conservation(fmt::format("{} ({} {})", path, configs[c].method, tester_name(configs[c].options.tester)),
@@ -99,7 +101,8 @@ std::vector<ScoreConfig> score_configs(const std::vector<MethodSpec>& methods,
 }
 
 std::vector<ScoreCell> run_score(const std::vector<ScoreFamily>& families,
-                                 const std::vector<ScoreConfig>& configs, int threads, int64_t parent_window) {
+                                 const std::vector<ScoreConfig>& configs, int threads,
+                                 const ScoreProgress& progress, int64_t parent_window) {
   std::vector<CandidateFilter> filters;
   for (const ScoreConfig& c : configs) filters.emplace_back(c.options.method);
   std::vector<ScoreCell> cells;
@@ -113,7 +116,7 @@ std::vector<ScoreCell> run_score(const std::vector<ScoreFamily>& families,
       cell.config = replay_config_json(c.options);
       cells.push_back(std::move(cell));
     }
-    for (const std::string& trace : fam.traces) score_trace(trace, configs, filters, &cells[first], threads, parent_window);
+    for (const std::string& trace : fam.traces) score_trace(trace, configs, filters, &cells[first], threads, progress, parent_window);
   }
   return cells;
 }

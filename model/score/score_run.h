@@ -3,6 +3,8 @@
 // rays shared among worker threads. Results come in a fixed order (family,
 // method, tester) whatever the thread count.
 #pragma once
+#include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -44,13 +46,17 @@ struct ScoreCell {
   int traces = 0;
 };
 
+/// Told the number of rays of a block just replayed with every configuration.
+using ScoreProgress = std::function<void(uint64_t rays)>;
+
 /// Replays every family with every configuration using `threads` threads (>= 1),
 /// parents looked up among the last `parent_window` rays (ParentRayStore).
 /// Cells are ordered family, then configuration. Throws TraceError naming the
 /// trace on bad input, ConservationError when a configuration's statistics do
-/// not count every ray read.
+/// not count every ray read. `progress` (may be empty) is called after every block.
 std::vector<ScoreCell> run_score(const std::vector<ScoreFamily>& families,
                                  const std::vector<ScoreConfig>& configs, int threads,
+                                 const ScoreProgress& progress = {},
                                  int64_t parent_window = ParentRayStore::kDefaultWindow);
 
 }  // namespace vbsim

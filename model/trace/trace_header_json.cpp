@@ -57,6 +57,10 @@ TraceHeader parse_trace_header(const json& object, const std::string& trace_path
     json_float32_array(*transform, "transform", m.data(), m.size());
     header.transform = m;
   }
+  if (const json* provenance = find_field(object, "provenance")) {
+    if (!provenance->is_object()) throw TraceFieldProblem{"provenance", "must be an object"};
+    header.provenance = provenance->dump(-1, ' ', false, json::error_handler_t::replace);
+  }
   return header;
 }
 
@@ -89,6 +93,12 @@ std::string trace_header_json(const TraceHeader& header) {
       append_json_float(out, x);
     }
     out.push_back(']');
+  }
+  if (!header.provenance.empty()) {
+    if (!json::accept(header.provenance) || header.provenance.front() != '{')
+      throw TraceFieldProblem{"provenance", "is not a JSON object"};
+    text(",\"provenance\":");
+    out.append(header.provenance.data(), header.provenance.data() + header.provenance.size());
   }
   out.push_back('}');
   return fmt::to_string(out);

@@ -21,6 +21,9 @@ struct TraceHeader {
   std::string generator;    ///< empty when absent
   std::string description;  ///< empty when absent
   std::optional<std::array<float, 16>> transform;  ///< row-major 4x4, float32
+  /// What wrote the file (version, command line, input checksums) as one
+  /// compact JSON object; empty when absent. Optional, descriptive only.
+  std::string provenance;
 };
 
 struct TraceRay {

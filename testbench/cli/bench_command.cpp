@@ -8,6 +8,8 @@
 #include "bench/functional_bench.h"
 #include "commands.h"
 #include "io/atomic_output_file.h"
+#include "exit_codes.h"
+#include "provenance/provenance.h"
 #include "method_options.h"
 #include "replay/replay_stats.h"
 
@@ -28,9 +30,11 @@ struct BenchArgs {
 
 void run_bench(const BenchArgs& a) {
   if (a.mode != "functional" && a.mode != "cycle")
-    throw std::runtime_error(fmt::format("option '--mode': '{}' is not available; modes: functional, cycle", a.mode));
-  if (a.rays <= 0) throw std::runtime_error("option '--rays': must be > 0");
-  if (a.repeats <= 0) throw std::runtime_error("option '--repeats': must be > 0");
+    throw UsageError(fmt::format("option '--mode': '{}' is not available; modes: functional, cycle", a.mode));
+  if (a.rays <= 0) throw UsageError("option '--rays': must be > 0");
+  if (a.repeats <= 0) throw UsageError("option '--repeats': must be > 0");
+  if (a.mode != "cycle" && !a.preset.empty()) throw UsageError("option '--preset' needs '--mode cycle'");
+  check_preset_name(a.preset);
   const ReplayOptions opt = resolve_method_options(a.method);
   const Scene scene = load_scene(a.scene);
   BenchParams p;
@@ -57,6 +61,7 @@ void run_bench(const BenchArgs& a) {
   j["seed"] = a.seed;
   j["repeats"] = a.repeats;
   j["config"] = replay_config_json(opt);
+  j["provenance"] = provenance_json({a.scene, a.method.config});
   if (!a.json.empty()) write_output_file(a.json, j.dump(2) + "\n", "bench JSON");
   fmt::print("vbsim bench ({}, {} rays, {} triangles, method {}, tester {}, best of {})\n", a.mode,
              r.rays, scene.size(), opt.method.name(), tester_name(opt.tester), a.repeats);

@@ -20,6 +20,9 @@ void add_score_command(CLI::App& app);
 void add_scenarios_command(CLI::App& app);
 void add_fit_command(CLI::App& app);
 void add_render_command(CLI::App& app);
+void add_hw_command(CLI::App& app);
+void add_check_command(CLI::App& app);
+void add_capture_command(CLI::App& app);
 
 /// The main job: replay of the default trace with validity-bit, printed summary.
 int run_default_job();

@@ -8,6 +8,8 @@
 
 #include "commands.h"
 #include "io/atomic_output_file.h"
+#include "exit_codes.h"
+#include "provenance/provenance.h"
 #include "fit/fit_report.h"
 #include "replay/replay_config.h"
 #include "score/score_run.h"
@@ -28,13 +30,13 @@ struct FitArgs {
 FitSettings fit_settings(const FitArgs& a) {
   FitSettings s;
   if (!parse_tester(a.tester, s.tester))
-    throw ConfigError(fmt::format("option '--tester': unknown tester '{}'", a.tester));
+    throw UsageError(fmt::format("option '--tester': unknown tester '{}'; testers: three-half-plane, moller-trumbore, pbrt-watertight", a.tester));
   if (!parse_hit_point_mode(a.hitpoint, s.hit_point))
-    throw ConfigError(fmt::format("option '--hitpoint': unknown hit point '{}'", a.hitpoint));
+    throw UsageError(fmt::format("option '--hitpoint': unknown hit point '{}'; hit points: given, ray, barycentric", a.hitpoint));
   if (!parse_avoidance_policy(a.vb_policy, s.vb_policy))
-    throw ConfigError(fmt::format("option '--vb-policy': unknown policy '{}'", a.vb_policy));
+    throw UsageError(fmt::format("option '--vb-policy': unknown policy '{}'; policies: all, vote, sign-only", a.vb_policy));
   if (a.vb_min_exponent < 1 || a.vb_min_exponent > 254)
-    throw ConfigError("option '--vb-min-exponent': must be a biased float32 exponent in 1..254");
+    throw UsageError("option '--vb-min-exponent': must be a biased float32 exponent in 1..254");
   s.vb_min_exponent = a.vb_min_exponent;
   return s;
 }
@@ -49,10 +51,14 @@ std::vector<std::string> parameter_keys(const std::string& list) {
 }
 
 void run_fit_command(const FitArgs& a) {
-  if (a.threads < 1) throw ConfigError("option '--threads': must be >= 1");
+  if (a.threads < 1) throw UsageError("option '--threads': must be >= 1");
   const FitSettings settings = fit_settings(a);
   std::vector<FitParameter> params;
-  for (const std::string& key : parameter_keys(a.params)) params.push_back(make_fit_parameter(key, settings));
+  try {
+    for (const std::string& key : parameter_keys(a.params)) params.push_back(make_fit_parameter(key, settings));
+  } catch (const ConfigError& e) {  // an unknown parameter key
+    throw UsageError(e.what());
+  }
 
   std::vector<FitTrace> traces;
   for (const ScoreFamily& fam : collect_score_families(a.paths))
@@ -66,7 +72,11 @@ void run_fit_command(const FitArgs& a) {
                            {"tester", tester_name(settings.tester)},
                            {"hitpoint", hit_point_mode_name(settings.hit_point)},
                            {"fits", nlohmann::json::array()}};
-  for (const FitTrace& t : traces) report["traces"].push_back(t.path);
+  std::vector<std::string> inputs;
+  for (const FitTrace& t : traces) {
+    report["traces"].push_back(t.path);
+    inputs.push_back(t.path);
+  }
   if (!a.quiet)
     fmt::print("vbsim fit: {} trace(s), {} scored rays, tester {}, hit point {}; smallest values with no "
                "self_hit and no missed ray\n",
@@ -76,7 +86,10 @@ void run_fit_command(const FitArgs& a) {
     report["fits"].push_back(fit_json(r));
     if (!a.quiet) fmt::print("{}", fit_text(r));
   }
-  if (!a.json.empty()) write_output_file(a.json, report.dump(2) + "\n", "fit JSON");
+  if (!a.json.empty()) {
+    report["provenance"] = provenance_json(inputs);
+    write_output_file(a.json, report.dump(2) + "\n", "fit JSON");
+  }
 }
 
 }  // namespace

@@ -1,9 +1,14 @@
 #include "method_options.h"
 
+#include <fmt/format.h>
+
 #include <sstream>
 
 #include "commands.h"
+#include "exit_codes.h"
+#include "hw/hw_config.h"
 #include "replay/replay_config.h"
+#include "score/method_spec.h"
 
 namespace vbsim::cli {
 
@@ -12,7 +17,9 @@ void add_method_options(CLI::App& app, MethodOptions& o, const std::string& defa
   app.add_option("--method,-m", o.method,
                  "self-intersection method(s), joined by '+': none, tmin, primid, offset-normal, "
                  "offset-direction, offset-adaptive, offset-errbound, validity-bit, sign-only, "
-                 "shading-position, shading-position-always, reverse-shadow [" + default_method + "]");
+                 "shading-position, shading-position-always, reverse-shadow; parameters may follow "
+                 "as in vbsim score, METHOD:KEY=VALUE... (validity-bit:vb-eps-mode=fixed:vb-eps=1e-4) [" +
+                     default_method + "]");
   app.add_option("--tester", o.tester, "ray/triangle tester: three-half-plane, moller-trumbore or pbrt-watertight (three-half-plane with pbrt-v4's conservative t check) [three-half-plane]");
   app.add_option("--hitpoint", o.hitpoint,
                  "child origin before the method acts: given (the trace's o), ray (parent o + t d) "
@@ -42,12 +49,14 @@ void add_parent_window_option(CLI::App& cmd, int64_t& window) {
       ->capture_default_str();
 }
 
-ReplayOptions resolve_method_options(const MethodOptions& o) {
-  ReplayOptions opt;
-  if (!o.config.empty()) load_replay_config(o.config, opt);
-  nlohmann::json j = nlohmann::json::object();  // empty when only --config is given
-  if (!o.method.empty()) j["method"] = o.method;
-  else if (o.config.empty()) j["method"] = o.default_method;
+namespace {
+
+/// Applies the options given on the command line onto `opt` (after --config).
+/// `--method` may carry KEY=VALUE parameters as `vbsim score`'s entries do.
+void apply_command_line(const MethodOptions& o, ReplayOptions& opt) {
+  // empty when only --config is given
+  nlohmann::json j = o.method.empty() ? nlohmann::json::object() : method_spec_json(o.method);
+  if (o.method.empty() && o.config.empty()) j["method"] = o.default_method;
   if (!o.tester.empty()) j["tester"] = o.tester;
   if (!o.hitpoint.empty()) j["hitpoint"] = o.hitpoint;
   if (o.tmin_eps) j["tmin_eps"] = *o.tmin_eps;
@@ -68,14 +77,50 @@ ReplayOptions resolve_method_options(const MethodOptions& o) {
     std::string t;
     while (std::getline(in, t, ',')) {
       if (!tests.contains(t))
-        throw ConfigError("command line: option '--vb-tests': unknown test '" + t + "'");
+        throw ConfigError("option '--vb-tests': unknown test '" + t + "'; tests: normal, ray, component");
       tests[t] = true;
     }
     j["validity_bit"]["tests"] = tests;
   }
   apply_replay_config(j, "command line", opt);
+}
+
+}  // namespace
+
+ReplayOptions resolve_method_options(const MethodOptions& o) {
+  ReplayOptions opt;
+  if (!o.config.empty()) load_replay_config(o.config, opt);  // a bad file: a runtime error
+  try {
+    apply_command_line(o, opt);
+  } catch (const ConfigError& e) {
+    throw UsageError(e.what());
+  }
   opt.parent_window = o.parent_window;
   return opt;
+}
+
+std::vector<TesterKind> parse_tester_list(const std::string& list) {
+  std::vector<TesterKind> out;
+  std::stringstream in(list);
+  for (std::string name; std::getline(in, name, ',');) {
+    TesterKind t;
+    if (!parse_tester(name, t))
+      throw UsageError(fmt::format(
+          "option '--testers': unknown tester '{}'; testers: three-half-plane, moller-trumbore, pbrt-watertight", name));
+    out.push_back(t);
+  }
+  if (out.empty()) throw UsageError("option '--testers': empty list");
+  return out;
+}
+
+void check_preset_name(const std::string& preset) {
+  if (preset.empty()) return;
+  std::string names;
+  for (const std::string& n : hw::preset_names()) {
+    if (n == preset) return;
+    names += (names.empty() ? "" : ", ") + n;
+  }
+  throw UsageError(fmt::format("option '--preset': unknown preset '{}' (presets: {})", preset, names));
 }
 
 }  // namespace vbsim::cli

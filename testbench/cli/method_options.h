@@ -1,9 +1,11 @@
 // Command-line options of the self-intersection method, tester and hit point,
-// shared by `replay` and `bench`. Command-line values override a --config file.
+// shared by `replay`, `bench` and `render`. Command-line values override a
+// --config file.
 #pragma once
 #include <CLI/CLI.hpp>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "replay/replay_options.h"
 
@@ -25,8 +27,16 @@ struct MethodOptions {
 /// Registers the options on `app`, storing into `o`.
 void add_method_options(CLI::App& app, MethodOptions& o, const std::string& default_method);
 
-/// The effective ReplayOptions: defaults, then --config, then the options given.
-/// Throws ConfigError naming the option or field on a bad value.
+/// The effective ReplayOptions: defaults, then --config, then the options given
+/// (--method may carry `vbsim score`'s METHOD:KEY=VALUE parameters). Throws
+/// ConfigError naming the file and field for a bad --config file (a runtime
+/// error), UsageError naming the option for a bad command-line value.
 ReplayOptions resolve_method_options(const MethodOptions& o);
+
+/// A `--testers` comma list; throws UsageError naming an unknown tester or an empty list.
+std::vector<TesterKind> parse_tester_list(const std::string& list);
+
+/// Throws UsageError unless `preset` is empty or a hardware preset's name.
+void check_preset_name(const std::string& preset);
 
 }  // namespace vbsim::cli

@@ -9,6 +9,8 @@
 
 #include "commands.h"
 #include "io/atomic_output_file.h"
+#include "exit_codes.h"
+#include "provenance/provenance.h"
 #include "method_options.h"
 #include "render/float_list.h"
 #include "render/png_file.h"
@@ -45,8 +47,7 @@ void parse_size(const std::string& s, RenderSettings& rs) {
   }
   if (x == std::string::npos || used_w != x || used_h != s.size() - x - 1 || w < 1 || h < 1 ||
       w > 8192 || h > 8192)
-    throw std::runtime_error(
-        fmt::format("option '--size': '{}' is not WxH with width and height from 1 to 8192", s));
+    throw UsageError(fmt::format("option '--size': '{}' is not WxH with width and height from 1 to 8192", s));
   rs.width = w;
   rs.height = h;
 }
@@ -62,21 +63,22 @@ int run_render(const RenderArgs& a) {
   if (!a.camera.empty()) {
     std::vector<float> v;
     if (!parse_float_list(a.camera, 6, v))
-      throw std::runtime_error(
-          fmt::format("option '--camera': '{}' is not EX,EY,EZ,TX,TY,TZ (eye and target)", a.camera));
+      throw UsageError(fmt::format("option '--camera': '{}' is not EX,EY,EZ,TX,TY,TZ (eye and target)", a.camera));
     rs.camera.eye = Vec3f{v[0], v[1], v[2]};
     rs.camera.target = Vec3f{v[3], v[4], v[5]};
   }
   if (!(a.fov > 0.0f && a.fov < 180.0f))
-    throw std::runtime_error(fmt::format("option '--fov': {} is not in (0, 180) degrees", a.fov));
+    throw UsageError(fmt::format("option '--fov': {} is not in (0, 180) degrees", a.fov));
   rs.camera.vertical_fov_deg = a.fov;
   const ReplayOptions opt = resolve_method_options(a.method);
   if (!std::filesystem::exists(a.scene))
     throw std::runtime_error(fmt::format("scene '{}': no such file", a.scene));
 
   SceneAndBvh sb;
+  std::vector<std::string> inputs = {a.scene, a.method.config};
   if (is_trace_path(a.scene)) {  // a trace: its scene, transform and light
     const TraceHeader header = open_trace(a.scene)->header();
+    inputs.push_back(header.scene_path);
     sb = load_trace_scene(header);
     if (header.light) rs.light = {RenderLight::Kind::Point, *header.light};
   } else {
@@ -85,12 +87,13 @@ int run_render(const RenderArgs& a) {
   }
   if (!a.light.empty()) {
     std::string error;
-    if (!parse_render_light(a.light, rs.light, error)) throw std::runtime_error("option '--light': " + error);
+    if (!parse_render_light(a.light, rs.light, error)) throw UsageError("option '--light': " + error);
   }
 
   const RenderResult r = render_scene(sb.scene, sb.bvh, opt, rs);
-  write_png_rgb(a.out, r.width, r.height, r.image);
-  if (!a.errors.empty()) write_png_rgb(a.errors, r.width, r.height, r.errors);
+  const nlohmann::json provenance = provenance_json(inputs);
+  write_png_rgb(a.out, r.width, r.height, r.image, provenance.dump());
+  if (!a.errors.empty()) write_png_rgb(a.errors, r.width, r.height, r.errors, provenance.dump());
 
   const uint64_t rays = r.stats.total().rays;
   const double rays_per_s = r.stats.wall_s > 0 ? rays / r.stats.wall_s : 0.0;
@@ -104,6 +107,7 @@ int run_render(const RenderArgs& a) {
     j["pixels"] = {{"total", uint64_t(r.width) * uint64_t(r.height)},
                    {"acne", r.acne_pixels},
                    {"leak", r.leak_pixels}};
+    j["provenance"] = provenance;
     write_output_file(a.stats, j.dump(2) + "\n", "stats file");
   }
   if (!a.quiet) {
@@ -115,7 +119,7 @@ int run_render(const RenderArgs& a) {
     fmt::print("{}", r.stats.summary());
     fmt::print("render: {} rays in {:.3f} s, {:.0f} rays/s (method, exact oracle and verdict per ray)\n",
                rays, r.stats.wall_s, rays_per_s);
-    if (r.unscored_rays) fmt::print("warning: {} rays could not be scored\n", r.unscored_rays);
+    if (r.unscored_rays) fmt::print(stderr, "vbsim render: warning: {} rays could not be scored\n", r.unscored_rays);
   }
   return 0;
 }

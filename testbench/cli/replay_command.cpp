@@ -1,4 +1,5 @@
-// vbsim replay: functional replay of a trace, streamed.
+// vbsim replay: functional replay of a trace, streamed, or the cycle-level
+// model's replay of it (--mode cycle).
 #include <fmt/format.h>
 
 #include <atomic>
@@ -6,17 +7,23 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
-#include <unistd.h>
 
 #include "hw/cycle_replay.h"
+#include "hw/trace_order_buffer.h"
 #include "io/atomic_output_file.h"
 #include "io/output_paths.h"
-#include "hw/trace_order_buffer.h"
 
 #include "commands.h"
+#include "exit_codes.h"
 #include "method_options.h"
+#include "output_provenance.h"
+#include "progress/progress_meter.h"
+#include "provenance/provenance.h"
 #include "replay/replay_run.h"
+#include "systemc_messages.h"
+#include "trace/checked_trace_source.h"
 #include "trace/trace_file.h"
+#include "trace/trace_ray_count.h"
 
 namespace vbsim::cli {
 
@@ -25,8 +32,8 @@ namespace {
 std::atomic<bool> g_stop{false};
 extern "C" void on_interrupt(int) { g_stop.store(true); }
 
-/// SIGINT and SIGTERM stop the run at the next ray; the previous handlers
-/// come back when it ends (or throws).
+/// SIGINT and SIGTERM stop the run at the next ray (statistics marked
+/// partial); the previous handlers come back when it ends or throws.
 class InterruptScope {
  public:
   InterruptScope() {
@@ -50,31 +57,33 @@ struct ReplayArgs {
   std::string hits;
   std::string mode = "functional";
   std::string preset;  // cycle mode: hardware preset (default: the config's, else small)
-  std::string vcd, timeline;
-  uint64_t timeline_start = 0, timeline_cycles = 2000;
+  std::string vcd, timeline, trace_scope, deps, ray_log;
+  uint64_t timeline_start = 0, timeline_cycles = 2000, vcd_start = 0, vcd_cycles = 2000;
+  bool timeline_window_given = false;  // --timeline-start or --timeline-cycles on the command line
+  bool vcd_window_given = false;       // --vcd-start or --vcd-cycles on the command line
   bool quiet = false;
   MethodOptions method;
 };
 
-/// A one-line progress report on stderr, rewritten in place.
-void print_progress(const hw::CycleEngine& e) {
-  const hw::HwCounters& c = e.counters();
-  fmt::print(stderr, "\r  cycle {:>12}   rays done {:>10}   in flight {:>6}", c.cycles, c.rays, e.rays_in_flight());
+/// One line of the ray log.
+std::string ray_log_line(const hw::RayTimes& t) {
+  return fmt::format(R"({{"id":{},"parent":{},"ready":{},"emit":{},"start":{},"finish":{},"core":{},"slot":{}}})"
+                     "\n",
+                     t.id, t.parent, t.ready, t.emitted, t.started, t.finished, t.core, t.slot);
 }
 
 ReplayStats run_cycle_mode(const ReplayArgs& a, const ReplayOptions& opt, TraceSource& source, const SceneAndBvh& sb,
-                           std::ostream* hits, nlohmann::json& config, nlohmann::json& hw, std::string& table) {
-  const hw::HwConfig cfg = hw::resolve_hw_config(a.method.config, a.preset);
+                           std::ostream* hits, ProgressMeter& meter, nlohmann::json& config, nlohmann::json& hw,
+                           std::string& table) {
+  hw::HwConfig cfg = hw::resolve_hw_config(a.method.config, a.preset);
+  if (!a.deps.empty()) cfg.source.dependencies = a.deps == "on";
   config["hw"] = hw::hw_config_json(cfg);
   source.set_triangle_count(sb.scene.size());
   hw::CycleRunOptions run;
-  run.drive.vcd = a.vcd;
-  run.drive.stop = &g_stop;
-  const bool progress = !a.quiet && isatty(STDERR_FILENO);
-  if (progress) run.drive.progress = print_progress;
-  run.timeline = a.timeline;
-  run.timeline_first = a.timeline_start;
-  run.timeline_cycles = a.timeline_cycles;
+  run.stop = &g_stop;
+  if (meter.shown()) run.progress = [&meter](const hw::CycleEngine& e) { meter.update(e.rays_done()); };
+  run.vcd = {a.vcd, a.vcd_start, a.vcd_cycles, a.trace_scope};
+  run.timeline = {a.timeline, a.timeline_start, a.timeline_cycles, a.trace_scope};
   // Rays finish out of order; the hits file lists them in trace order, as the functional replay does.
   std::unique_ptr<hw::TraceOrderBuffer> ordered;
   if (hits) ordered = std::make_unique<hw::TraceOrderBuffer>(*hits);
@@ -82,70 +91,122 @@ ReplayStats run_cycle_mode(const ReplayArgs& a, const ReplayOptions& opt, TraceS
     ordered->put(index, hit_json_line(tr, out));
     check_hits_stream(*hits, "hits output");
   };
+  run.locator = [&source](const std::string& field, const std::string& message) {
+    return std::string(source.error_at_last_ray(field, message).what());
+  };
+  // The ray log: one JSON line per ray, in trace order.
+  std::unique_ptr<AtomicOutputFile> log_file;
+  std::unique_ptr<hw::TraceOrderBuffer> log;
+  if (!a.ray_log.empty()) {
+    log_file = std::make_unique<AtomicOutputFile>(a.ray_log);
+    log = std::make_unique<hw::TraceOrderBuffer>(log_file->stream());
+    run.ray_times = [&log](const hw::RayTimes& t) { log->put(t.trace_index, ray_log_line(t)); };
+  }
   hw::CycleRunResult r = replay_at_trace_ray(source, [&] {
     return hw::run_cycle_replay([&source](TraceRay& tr) { return source.next(tr); }, sb.scene, sb.bvh, opt, cfg,
                                 hits ? sink : hw::RayResultSink{}, run);
   });
   if (ordered) ordered->flush();  // a stopped run: the finished rays after the first dropped one
-  if (progress) fmt::print(stderr, "\n");
+  if (log) {
+    log->flush();
+    log_file->commit();
+  }
   hw = std::move(r.hw);
   table = std::move(r.table);
   return r.stats;
 }
 
-int run_replay_command(const ReplayArgs& a) {
+void check_mode_options(const ReplayArgs& a) {
   if (a.mode != "functional" && a.mode != "cycle")
-    throw std::runtime_error(fmt::format("option '--mode': '{}' is not available; modes: functional, cycle", a.mode));
-  if (a.mode != "cycle" && (!a.preset.empty() || !a.vcd.empty() || !a.timeline.empty()))
-    throw std::runtime_error("options '--preset', '--vcd' and '--timeline' need '--mode cycle'");
+    throw UsageError(fmt::format("option '--mode': '{}' is not available; modes: functional, cycle", a.mode));
+  if (a.mode != "cycle" && (!a.preset.empty() || !a.vcd.empty() || !a.timeline.empty() || a.timeline_window_given ||
+                            a.vcd_window_given || !a.deps.empty() || !a.ray_log.empty() || !a.trace_scope.empty()))
+    throw UsageError(
+        "options '--preset', '--vcd', '--vcd-start', '--vcd-cycles', '--timeline', '--timeline-start', "
+        "'--timeline-cycles', '--trace-scope', '--deps' and '--ray-log' need '--mode cycle'");
+  if (a.timeline_window_given && a.timeline.empty())
+    throw UsageError("options '--timeline-start' and '--timeline-cycles' need '--timeline FILE'");
+  if (a.vcd_window_given && a.vcd.empty())
+    throw UsageError("options '--vcd-start' and '--vcd-cycles' need '--vcd FILE'");
+  if (a.timeline_cycles == 0) throw UsageError("option '--timeline-cycles': must be > 0");
+  if (a.vcd_cycles == 0) throw UsageError("option '--vcd-cycles': must be > 0");
+  check_preset_name(a.preset);
+}
+
+int run_replay_command(const ReplayArgs& a) {
+  check_mode_options(a);
+  set_systemc_quiet(a.quiet);
   const ReplayOptions opt = resolve_method_options(a.method);
-  auto source = open_trace(a.trace);
+  auto file = open_trace(a.trace);
   // Before any long work: no output may overwrite an input or another output,
   // and every output must be creatable.
-  check_output_paths({{"trace", a.trace}, {"option '--config'", a.method.config}, {"scene", source->header().scene_path}},
+  check_output_paths({{"trace", a.trace}, {"option '--config'", a.method.config}, {"scene", file->header().scene_path}},
                      {{"option '--stats'", a.stats},
                       {"option '--hits'", a.hits},
                       {"option '--timeline'", a.timeline},
-                      {"option '--vcd'", a.vcd}});
+                      {"option '--vcd'", a.vcd},
+                      {"option '--ray-log'", a.ray_log}});
   std::unique_ptr<AtomicOutputFile> stats_file, hits_file;
   if (!a.stats.empty()) stats_file = std::make_unique<AtomicOutputFile>(a.stats);
   if (!a.hits.empty()) hits_file = std::make_unique<AtomicOutputFile>(a.hits);
-  if (!a.timeline.empty()) AtomicOutputFile(a.timeline).discard();  // creatable; written at the end
-  const SceneAndBvh sb = load_trace_scene(source->header());
+  for (const std::string* later : {&a.timeline, &a.vcd})  // written at the end: creatable now
+    if (!later->empty()) AtomicOutputFile(*later).discard();
+  const SceneAndBvh sb = load_trace_scene(file->header());
+  // Every ray passes the consistency checks: a child before its parent is an
+  // error, the other checks are counted warnings (docs/trace-format.md).
+  TraceConsistencyChecker::Options checks;
+  checks.triangles = &sb.scene.triangles;
+  auto source = std::make_unique<CheckedTraceSource>(*file, checks);
+  // The inputs every output names with their checksums.
+  const std::vector<std::string> inputs = {a.trace, file->header().scene_path, a.method.config};
 
+  if (hits_file) hits_file->stream() << hits_header_line(provenance_json(inputs));
   nlohmann::json config = replay_config_json(opt);
   nlohmann::json hw;  // cycle mode: the hw section
   std::string table;
+  std::FILE* terminal = ProgressMeter::terminal_or_null(a.quiet);
+  ProgressMeter meter(fmt::format("replay ({})", a.mode), terminal ? count_trace_rays(a.trace) : 0, "rays", terminal);
   std::ostream* hits = hits_file ? &hits_file->stream() : nullptr;
   ReplayStats stats;
   try {
     const InterruptScope interrupts;
-    stats = a.mode == "cycle" ? run_cycle_mode(a, opt, *source, sb, hits, config, hw, table)
-                              : run_replay(*source, sb, opt, hits, &g_stop);
+    stats = a.mode == "cycle"
+                ? run_cycle_mode(a, opt, *source, sb, hits, meter, config, hw, table)
+                : run_replay(*source, sb, opt, hits, &g_stop,
+                             meter.shown() ? ReplayProgress([&meter](uint64_t n) { meter.update(n); }) : nullptr);
   } catch (const OutputError& e) {
     if (e.path == "hits output") throw OutputError(a.hits, e.message);
     throw;
   }
-
+  meter.finish();
   if (hits_file) {  // a stopped run's hits end with a line that says so
     if (stats.partial) hits_file->stream() << partial_hits_marker(stats.total().rays);
     hits_file->commit();
   }
+
+  // The checksums (read once, cached) only when a file will record them.
+  const bool records = !a.stats.empty() || !a.vcd.empty() || !a.timeline.empty();
+  const nlohmann::json provenance = records ? provenance_json(inputs) : nlohmann::json();
+  if (!a.vcd.empty()) add_vcd_provenance(a.vcd, provenance);
+  if (!a.timeline.empty()) add_timeline_provenance(a.timeline, provenance);
   if (stats_file) {
     config["trace"] = a.trace;
     config["scene"] = source->header().scene_path;
     config["triangles"] = sb.scene.size();
     nlohmann::json j = stats.to_json(config);
     if (!hw.is_null()) j["hw"] = std::move(hw);
+    j["provenance"] = provenance;
+    j["checks"] = source->summary_json();
     stats_file->stream() << j.dump(2) << "\n";
     stats_file->commit();
   }
   if (!a.quiet) {
+    fmt::print(stderr, "{}", source->warning_lines("vbsim replay", false));
     fmt::print("vbsim replay {}  method {}  tester {}  scene {} ({} triangles)\n", a.trace,
                opt.method.name(), tester_name(opt.tester), source->header().scene, sb.scene.size());
     fmt::print("{}{}", stats.summary(), table);
   }
-  return stats.partial ? 130 : 0;
+  return stats.partial ? kExitInterrupted : kExitSuccess;
 }
 
 }  // namespace
@@ -159,17 +220,34 @@ void add_replay_command(CLI::App& app) {
   cmd->add_option("--mode", args->mode, "replay mode: functional (untimed) or cycle (the SystemC hardware model)")
       ->capture_default_str();
   cmd->add_option("--preset", args->preset, "cycle mode: hardware preset, small or large [the config's hw.preset, else small]");
-  cmd->add_option("--vcd", args->vcd, "cycle mode: write a VCD of the key values here");
+  cmd->add_option("--vcd", args->vcd,
+                  "cycle mode: write a VCD of per-instance values (busy slots, operations in flight, L1 misses) here");
+  CLI::Option* vcd_start =
+      cmd->add_option("--vcd-start", args->vcd_start, "cycle mode: first cycle of the VCD window")->capture_default_str();
+  CLI::Option* vcd_cycles =
+      cmd->add_option("--vcd-cycles", args->vcd_cycles, "cycle mode: cycles in the VCD window")->capture_default_str();
+  cmd->add_option("--trace-scope", args->trace_scope,
+                  "cycle mode: record only the instances whose hierarchical name starts with this "
+                  "(e.g. accelerator.core_3) in the VCD and the timeline");
   cmd->add_option("--timeline", args->timeline, "cycle mode: write a Chrome trace-event JSON of a cycle window here");
-  cmd->add_option("--timeline-start", args->timeline_start, "cycle mode: first cycle of the timeline window")
-      ->capture_default_str();
-  cmd->add_option("--timeline-cycles", args->timeline_cycles, "cycle mode: cycles in the timeline window")
-      ->capture_default_str();
+  CLI::Option* start = cmd->add_option("--timeline-start", args->timeline_start,
+                                       "cycle mode: first cycle of the timeline window")->capture_default_str();
+  CLI::Option* cycles = cmd->add_option("--timeline-cycles", args->timeline_cycles,
+                                        "cycle mode: cycles in the timeline window")->capture_default_str();
+  cmd->add_option("--deps", args->deps,
+                  "cycle mode: on (a child ray waits for its parent's result plus the shading latency) or off (every "
+                  "ray independent, as a trace of unrelated queries) [the config's hw.source.dependencies, else on]")
+      ->check(CLI::IsMember({"on", "off"}));
+  cmd->add_option("--ray-log", args->ray_log,
+                  "cycle mode: write one JSON line per ray here, in trace order: id, parent, ready, emit, start and "
+                  "finish cycles, core, slot");
   cmd->add_option("--stats", args->stats, "write the statistics JSON here");
-  cmd->add_option("--hits", args->hits, "write one JSON line per ray here");
-  cmd->add_flag("--quiet,-q", args->quiet, "print nothing on success");
+  cmd->add_option("--hits", args->hits, "write one JSON line per ray here (after a provenance line)");
+  cmd->add_flag("--quiet,-q", args->quiet, "print nothing on success (no progress, no SystemC info messages)");
   add_method_options(*cmd, args->method, "none");
-  cmd->callback([args] {
+  cmd->callback([args, start, cycles, vcd_start, vcd_cycles] {
+    args->timeline_window_given = start->count() > 0 || cycles->count() > 0;
+    args->vcd_window_given = vcd_start->count() > 0 || vcd_cycles->count() > 0;
     const int rc = run_replay_command(*args);
     if (rc != 0) throw CLI::RuntimeError(rc);
   });

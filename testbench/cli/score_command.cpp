@@ -9,6 +9,13 @@
 #include "commands.h"
 #include "io/atomic_output_file.h"
 #include "io/output_paths.h"
+#include "exit_codes.h"
+#include "method_options.h"
+#include "output_provenance.h"
+#include "progress/progress_meter.h"
+#include "provenance/provenance.h"
+#include "score_merge.h"
+#include "trace/trace_ray_count.h"
 #include "replay/replay_config.h"
 #include "score/score_run.h"
 #include "score/score_table.h"
@@ -24,21 +31,9 @@ struct ScoreArgs {
   int threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   bool quiet = false;
   int64_t parent_window = ParentRayStore::kDefaultWindow;
+  bool merge = false;
+  bool testers_given = false;
 };
-
-std::vector<TesterKind> parse_testers(const std::string& list) {
-  std::vector<TesterKind> out;
-  std::stringstream in(list);
-  std::string name;
-  while (std::getline(in, name, ',')) {
-    TesterKind t;
-    if (!parse_tester(name, t))
-      throw ConfigError(fmt::format("option '--testers': unknown tester '{}' (three-half-plane, moller-trumbore)", name));
-    out.push_back(t);
-  }
-  if (out.empty()) throw ConfigError("option '--testers': empty list");
-  return out;
-}
 
 std::string joined_default_methods() {
   std::string s;
@@ -60,29 +55,59 @@ void print_summary(const nlohmann::json& score) {
   }
 }
 
-void run_score_command(const ScoreArgs& a) {
-  if (a.threads < 1) throw ConfigError("option '--threads': must be >= 1");
-  const std::vector<MethodSpec> methods =
-      parse_method_list(a.methods.empty() ? joined_default_methods() : a.methods);
-  const std::vector<TesterKind> testers = parse_testers(a.testers);
-  const std::vector<ScoreFamily> families = collect_score_families(a.paths);
-  std::vector<NamedPath> inputs;
-  for (const ScoreFamily& f : families)
-    for (const std::string& t : f.traces) inputs.push_back({"trace", t});
-  check_output_paths(inputs, {{"option '--out'", a.out}, {"option '--accuracy-md'", a.markdown}});
+/// Writes the table (JSON, markdown) and prints its summary.
+void write_outputs(const ScoreArgs& a, nlohmann::json score, const std::string& command,
+                   const std::vector<std::string>& inputs) {
+  score["provenance"] = provenance_json(inputs);
+  if (!a.out.empty()) write_output_file(a.out, score.dump(1) + "\n", "score JSON");
+  if (!a.markdown.empty())
+    write_output_file(a.markdown,
+               score_markdown(score, a.regenerate.empty() ? command : a.regenerate) +
+                   markdown_provenance(score["provenance"]),
+               "markdown");
+  if (!a.quiet) print_summary(score);
+}
 
+void run_score_command(const ScoreArgs& a) {
+  if (a.threads < 1) throw UsageError("option '--threads': must be >= 1");
   std::string command = "vbsim score";
   for (const std::string& p : a.paths) command += " " + p;
+  if (a.merge) {
+    if (!a.methods.empty() || a.testers_given)
+      throw UsageError("option '--merge' takes score tables; their runs chose the methods and testers");
+    write_outputs(a, merge_score_tables(a.paths, command + " --merge"), command + " --merge", a.paths);
+    return;
+  }
+  std::vector<MethodSpec> methods;
+  try {
+    methods = parse_method_list(a.methods.empty() ? joined_default_methods() : a.methods);
+  } catch (const ConfigError& e) {
+    throw UsageError(std::string("option '--methods': ") + e.what());
+  }
+  const std::vector<TesterKind> testers = parse_tester_list(a.testers);
+  const std::vector<ScoreFamily> families = collect_score_families(a.paths);
+  std::vector<NamedPath> named_inputs;
+  for (const ScoreFamily& f : families)
+    for (const std::string& t : f.traces) named_inputs.push_back({"trace", t});
+  check_output_paths(named_inputs, {{"option '--out'", a.out}, {"option '--accuracy-md'", a.markdown}});
+
   if (!a.methods.empty()) command += " --methods " + a.methods;
   command += " --testers " + a.testers;
 
+  std::vector<std::string> inputs;
+  uint64_t total = 0;
+  std::FILE* terminal = ProgressMeter::terminal_or_null(a.quiet);
+  for (const ScoreFamily& fam : families)
+    for (const std::string& t : fam.traces) {
+      inputs.push_back(t);
+      if (terminal) total += count_trace_rays(t);
+    }
+  const std::vector<ScoreConfig> configs = score_configs(methods, testers);
+  ProgressMeter meter(fmt::format("score: {} configurations", configs.size()), total, "rays", terminal);
   const std::vector<ScoreCell> cells =
-      run_score(families, score_configs(methods, testers), a.threads, a.parent_window);
-  const nlohmann::json score = score_json(families, cells, command);
-  if (!a.out.empty()) write_output_file(a.out, score.dump(1) + "\n", "score JSON");
-  if (!a.markdown.empty())
-    write_output_file(a.markdown, score_markdown(score, a.regenerate.empty() ? command : a.regenerate), "markdown");
-  if (!a.quiet) print_summary(score);
+      run_score(families, configs, a.threads, [&meter](uint64_t n) { meter.add(n); }, a.parent_window);
+  meter.finish();
+  write_outputs(a, score_json(families, cells, command), command, inputs);
 }
 
 }  // namespace
@@ -97,7 +122,7 @@ void add_score_command(CLI::App& app) {
   cmd->add_option("--methods", args->methods,
                   "comma list of METHOD[+METHOD][:KEY=VALUE...], KEY a replay option without dashes "
                   "(e.g. validity-bit:vb-eps-mode=fixed:vb-eps=1e-4) [" + joined_default_methods() + "]");
-  cmd->add_option("--testers", args->testers, "comma list of testers")->capture_default_str();
+  CLI::Option* testers = cmd->add_option("--testers", args->testers, "comma list of testers")->capture_default_str();
   cmd->add_option("--out", args->out, "write the score table as JSON here");
   cmd->add_option("--accuracy-md", args->markdown, "write the markdown table here (docs/results/accuracy.md)");
   cmd->add_option("--regenerate-with", args->regenerate,
@@ -105,7 +130,12 @@ void add_score_command(CLI::App& app) {
   cmd->add_option("--threads", args->threads, "worker threads")->capture_default_str();
   add_parent_window_option(*cmd, args->parent_window);
   cmd->add_flag("--quiet,-q", args->quiet, "print nothing on success");
-  cmd->callback([args] { run_score_command(*args); });
+  cmd->add_flag("--merge", args->merge,
+                "the paths are score tables (--out JSON) of runs over disjoint families: write their union");
+  cmd->callback([args, testers] {
+    args->testers_given = testers->count() > 0;
+    run_score_command(*args);
+  });
 }
 
 }  // namespace vbsim::cli

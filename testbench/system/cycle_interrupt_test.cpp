@@ -69,7 +69,7 @@ TEST_CASE("Ctrl-C stops a cycle replay on a terminal and writes partial statisti
   std::string seen;
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
   bool open = true;
-  while (open && seen.find("rays done") == std::string::npos && std::chrono::steady_clock::now() < deadline)
+  while (open && seen.find("ETA") == std::string::npos && std::chrono::steady_clock::now() < deadline)
     open = read_terminal(terminal, seen, 50);
   kill(child, SIGINT);
   while (open) open = read_terminal(terminal, seen, 1000);
@@ -78,7 +78,9 @@ TEST_CASE("Ctrl-C stops a cycle replay on a terminal and writes partial statisti
   close(terminal);
 
   INFO(seen);
-  CHECK_THAT(seen, Catch::Contains("\r  cycle") && Catch::Contains("rays done"));
+  // The progress line: percentage of the trace's rays, and the time left.
+  CHECK_THAT(seen, Catch::Contains("\rreplay (cycle)") && Catch::Contains("%") && Catch::Contains("/300000 rays") &&
+                       Catch::Contains("ETA"));
   REQUIRE(WIFEXITED(status));
   CHECK(WEXITSTATUS(status) == 130);
   const auto s = nlohmann::json::parse(read_file(stats));
@@ -86,9 +88,9 @@ TEST_CASE("Ctrl-C stops a cycle replay on a terminal and writes partial statisti
   const uint64_t done = s["hw"]["rays"].get<uint64_t>();
   CHECK(done > 0);
   CHECK(done < static_cast<uint64_t>(kRays));
-  // One line per finished ray, then the line that marks the file partial.
+  // The header, one line per finished ray, then the line that marks the file partial.
   const std::string lines = read_file(hits);
-  CHECK(static_cast<uint64_t>(std::count(lines.begin(), lines.end(), '\n')) == done + 1);
+  CHECK(static_cast<uint64_t>(std::count(lines.begin(), lines.end(), '\n')) == done + 2);
   const size_t last = lines.rfind('\n', lines.size() - 2);
   const auto marker = nlohmann::json::parse(lines.substr(last + 1));
   CHECK(marker["partial"] == true);

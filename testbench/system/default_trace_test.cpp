@@ -58,6 +58,10 @@ TEST_CASE("the hits file has one line per ray with its verdict", "[system]") {
   REQUIRE(r.exit_code == 0);
   std::istringstream lines(read_file(dir / "h.jsonl"));
   std::string line;
+  REQUIRE(std::getline(lines, line));  // the header: what wrote the file
+  const auto header = nlohmann::json::parse(line);
+  CHECK(header["format"] == "vbsim-hits");
+  CHECK(header["provenance"]["inputs"][0]["path"] == default_trace());
   int64_t n = 0, rejected = 0;
   while (std::getline(lines, line)) {
     const auto j = nlohmann::json::parse(line);

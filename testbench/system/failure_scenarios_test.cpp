@@ -51,10 +51,13 @@ fs::path generate(const std::string& name, const std::string& args) {
   return dir;
 }
 
-/// Every file of `dir`, by name, with its bytes.
+/// Every scene and trace of `dir`, by name, with its bytes but for the
+/// provenance (gen's file list, and the command line each file records).
 std::map<std::string, std::string> files_of(const fs::path& dir) {
   std::map<std::string, std::string> out;
-  for (const auto& e : fs::directory_iterator(dir)) out[e.path().filename().string()] = read_file(e.path());
+  for (const auto& e : fs::directory_iterator(dir))
+    if (e.path().filename() != ".vbsim-gen.json")
+      out[e.path().filename().string()] = without_provenance(read_file(e.path()));
   return out;
 }
 

@@ -1,6 +1,6 @@
 // SIGTERM, like Ctrl-C, stops a replay at the next ray: exit status 130,
-// statistics marked partial, a hits file of whole lines ending with the line
-// that marks it partial; and a trace whose parents lie beyond the parent
+// statistics marked partial, a hits file of whole lines (its header, a line
+// per finished ray) ending with the line that marks it partial; and a trace whose parents lie beyond the parent
 // window is refused at the child, never replayed with other origins.
 #include <catch2/catch.hpp>
 
@@ -71,7 +71,7 @@ TEST_CASE("SIGTERM stops a replay and writes partial statistics", "[system][inte
   const std::string lines = read_file(hits);
   REQUIRE(!lines.empty());
   CHECK(lines.back() == '\n');
-  CHECK(static_cast<uint64_t>(std::count(lines.begin(), lines.end(), '\n')) == rays + 1);
+  CHECK(static_cast<uint64_t>(std::count(lines.begin(), lines.end(), '\n')) == rays + 2);  // + header and marker
   const auto marker = nlohmann::json::parse(lines.substr(lines.rfind('\n', lines.size() - 2) + 1));
   CHECK(marker == nlohmann::json{{"partial", true}, {"rays", rays}});
 }

@@ -17,10 +17,10 @@ struct RunResult {
   std::string output;
 };
 
-/// Runs the shell command `cmd`, stderr joined to stdout.
+/// Runs the shell command `cmd`, reading its stdout.
 inline RunResult run_command(const std::string& cmd) {
   RunResult r;
-  FILE* pipe = popen((cmd + " 2>&1").c_str(), "r");
+  FILE* pipe = popen(cmd.c_str(), "r");
   if (!pipe) return r;
   std::array<char, 4096> buf;
   size_t n;
@@ -30,14 +30,17 @@ inline RunResult run_command(const std::string& cmd) {
   return r;
 }
 
-inline RunResult run_vbsim(const std::string& args) { return run_command(std::string(VBSIM_BINARY) + " " + args); }
+/// Runs `vbsim ARGS` through the shell, reading its stdout.
+inline RunResult run_vbsim_raw(const std::string& args) { return run_command(std::string(VBSIM_BINARY) + " " + args); }
+
+inline RunResult run_vbsim(const std::string& args) { return run_vbsim_raw(args + " 2>&1"); }
 
 /// As run_vbsim, through bash rather than sh, for arguments that need it
 /// (process substitution <(...)).
 inline RunResult run_vbsim_bash(const std::string& args) {
   const auto script = std::filesystem::temp_directory_path() / ("vbsim_bash_" + std::to_string(::getpid()) + ".sh");
   std::ofstream(script) << std::string(VBSIM_BINARY) << " " << args << "\n";
-  const RunResult r = run_command("bash " + script.string());
+  const RunResult r = run_command("bash " + script.string() + " 2>&1");
   std::filesystem::remove(script);
   return r;
 }
@@ -62,5 +65,37 @@ inline std::string read_file(const std::filesystem::path& p) {
 }
 
 inline std::string source_dir() { return VBSIM_SOURCE_DIR; }
+
+/// Exit code, stdout and stderr of one run, kept apart.
+struct SplitRun {
+  int exit_code = -1;
+  std::string out, err;
+};
+
+inline SplitRun run_vbsim_split(const std::string& args) {
+  static int runs = 0;
+  const auto err_file = std::filesystem::temp_directory_path() /
+                        ("vbsim_stderr_" + std::to_string(::getpid()) + "_" + std::to_string(++runs));
+  const RunResult r = run_vbsim_raw(args + " 2>" + err_file.string());
+  SplitRun s{r.exit_code, r.output, read_file(err_file)};
+  std::filesystem::remove(err_file);
+  return s;
+}
+
+/// `text` without what records its making (the command line, checksums): a
+/// trace header's "provenance" field, a hits file's first line, a PLY
+/// "comment vbsim-provenance" line. What is left is what a seed determines.
+inline std::string without_provenance(std::string text) {
+  if (text.rfind("{\"format\":\"vbsim-hits\"", 0) == 0) return text.substr(text.find('\n') + 1);
+  const size_t line_end = text.find('\n');
+  const size_t field = text.find(",\"provenance\":{");
+  if (field != std::string::npos && field < line_end) {
+    const size_t object_end = text.rfind('}', line_end);  // the header's own closing brace
+    text.erase(field, object_end - field);
+  }
+  const size_t comment = text.find("\ncomment vbsim-provenance ");
+  if (comment != std::string::npos) text.erase(comment + 1, text.find('\n', comment + 1) - comment);
+  return text;
+}
 
 }  // namespace vbsim::test

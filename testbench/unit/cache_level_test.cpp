@@ -143,7 +143,7 @@ TEST_CASE("Cache level matches a plain model on random streams", "[memory][mshr]
 }
 
 TEST_CASE("Cache level lookups compiled for 4 8 and 16 ways match the plain model", "[memory][mshr]") {
-  // The forms MemoryHierarchy uses for the presets' associativities.
+  // The forms the L1Cache and L2Cache modules use for the presets' associativities.
   check_against_plain<4>(Shape{3, 4, 8});
   check_against_plain<4>(Shape{16, 4, 8});
   check_against_plain<8>(Shape{8, 8, 32});

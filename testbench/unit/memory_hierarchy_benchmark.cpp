@@ -18,9 +18,11 @@
 #include <random>
 #include <vector>
 
-#include "hw/memory_port.h"
+#include "memory_rig.h"
 
 using namespace vbsim::hw;
+using vbsim::hw::test::make_memory;
+using vbsim::hw::test::MemoryRig;
 
 namespace {
 
@@ -59,7 +61,7 @@ struct Call {
 };
 
 // The calls of the closed loop over `mem`, in order, with their answers.
-std::vector<Call> run_closed_loop(MemoryPort& mem, const std::vector<std::vector<Fetch>>& slots, int slots_per_core) {
+std::vector<Call> run_closed_loop(MemoryRig& mem, const std::vector<std::vector<Fetch>>& slots, int slots_per_core) {
   using Event = std::pair<uint64_t, uint32_t>;  // (cycle, slot)
   std::vector<Event> heap_storage;
   heap_storage.reserve(slots.size());

@@ -1,5 +1,6 @@
-// The L1/L2/DRAM hierarchy behind make_memory: latencies computed by hand from
-// the composition in docs/memory-model.md, merging of misses in flight, MSHR,
+// The L1/L2/DRAM hierarchy of the accelerator's memory modules (L1Cache,
+// L2Cache, the Dram target behind the TLM-2.0 socket): latencies computed by
+// hand from the composition in docs/memory-model.md, merging of misses in flight, MSHR,
 // outstanding-request and bandwidth stalls, and a cross-check of the hit/miss
 // sequence against explicit LRU lists.
 #include <catch2/catch.hpp>
@@ -7,10 +8,12 @@
 #include <random>
 #include <vector>
 
-#include "hw/memory_port.h"
+#include "memory_rig.h"
 #include "lru_reference.h"
 
 using namespace vbsim::hw;
+using vbsim::hw::test::make_memory;
+using vbsim::hw::test::MemoryRig;
 
 namespace {
 

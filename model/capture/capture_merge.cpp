@@ -1,0 +1,274 @@
+#include "capture/capture_merge.h"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "capture/capture_trees.h"
+#include "capture/captured_scene.h"
+#include "capture/raw_capture_files.h"
+#include "datapath/hit_point.h"
+#include "scene/ply_scene_writer.h"
+#include "trace/trace_file.h"
+#include "trace/trace_validation.h"
+
+namespace vbsim::capture {
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+namespace {
+
+using SceneKey = std::pair<uint32_t, uint32_t>;  // (scene ordinal, commit)
+
+bool occluded(const RawRay& r) { return r.op == static_cast<uint16_t>(RawOp::Occluded); }
+
+/// The ray as a trace ray without parent data: origin, direction and interval as passed to Embree.
+TraceRay base_ray(const RawRay& r) {
+  TraceRay t;
+  t.o = {r.org[0], r.org[1], r.org[2]};
+  t.d = {r.dir[0], r.dir[1], r.dir[2]};
+  t.tmin = r.tnear;
+  t.tmax = r.tfar;
+  return t;
+}
+
+struct Tally {
+  std::map<long, int64_t> rays_by_process;
+  std::map<std::pair<long, SceneKey>, int64_t> rays_by_scene;
+};
+
+/// The processes that traced rays, checked to have exited normally, and how many rays each traced where.
+Tally tally(const std::map<long, ProcessFiles>& processes) {
+  Tally t;
+  for (const auto& [pid, p] : processes) {
+    if (p.ray_files.empty()) continue;
+    if (p.summary.empty())
+      throw std::runtime_error(fmt::format(
+          "process {} traced rays but did not exit normally (no process-{}.txt): the capture is incomplete", pid, pid));
+    const auto values = read_process_summary(p.summary);
+    if (values.count("write_failed") && values.at("write_failed") != 0)
+      throw std::runtime_error(fmt::format("process {}: the capture shim could not write all its files", pid));
+    for (const auto& [k, path] : p.ray_files) {
+      const MappedRays rays(path);
+      for (std::size_t i = 0; i < rays.size(); ++i) {
+        ++t.rays_by_process[pid];
+        ++t.rays_by_scene[{pid, {rays[i].scene, rays[i].commit}}];
+      }
+    }
+  }
+  return t;
+}
+
+std::string join(const std::vector<std::string>& words) {
+  std::string s;
+  for (const std::string& w : words) s += (s.empty() ? "" : " ") + w;
+  return s;
+}
+
+std::string hit_line(int64_t id, const RawRay& r, int64_t triangle) {
+  if (occluded(r)) return fmt::format("{{\"id\":{},\"occluded\":{}}}\n", id, std::isinf(r.hit_t) && r.hit_t < 0);
+  if (r.geom == kInvalidId) return fmt::format("{{\"id\":{},\"prim\":-1}}\n", id);
+  std::string s = fmt::format("{{\"id\":{},\"prim\":{},\"t\":{},\"u\":{},\"v\":{},\"geom\":{},\"geom_prim\":{}", id,
+                              triangle, r.hit_t, r.u, r.v, r.geom, r.prim);
+  if (r.inst != kInvalidId) s += fmt::format(",\"inst\":{}", r.inst);
+  if (triangle < 0) s += ",\"not_captured\":true";
+  return s + "}\n";
+}
+
+void rename_into_place(const fs::path& from, const fs::path& to) {
+  std::error_code ec;
+  fs::rename(from, to, ec);
+  if (ec) throw std::runtime_error(fmt::format("{}: cannot rename to {}: {}", from.string(), to.string(), ec.message()));
+}
+
+}  // namespace
+
+MergeResult merge_capture(const std::string& raw_dir, const std::string& out_dir, const MergeOptions& opt) {
+  const auto processes = find_capture_files(raw_dir);
+  const Tally tally_ = tally(processes);
+  if (tally_.rays_by_scene.empty())
+    throw std::runtime_error(
+        "no Embree ray queries were captured: the application made no rtcIntersect/rtcOccluded call through a "
+        "shared libembree3 (a statically linked Embree cannot be interposed)");
+  // The trace is the (process, scene, commit) that traced the most rays; ties go to the lowest scene and commit.
+  auto best = tally_.rays_by_scene.begin();
+  for (auto it = tally_.rays_by_scene.begin(); it != tally_.rays_by_scene.end(); ++it)
+    if (it->second > best->second) best = it;
+  const long pid = best->first.first;
+  const SceneKey key = best->first.second;
+  const ProcessFiles& files = processes.at(pid);
+  if (key.second == 0 || !files.scenes.count(key))
+    throw std::runtime_error(fmt::format("process {} traced rays against scene {} before committing it", pid, key.first));
+  const CapturedScene scene = CapturedScene::read(files.scenes.at(key));
+  if (scene.triangles().empty())
+    throw std::runtime_error(fmt::format("the traced scene (scene {}, commit {}) has no triangle geometry that could be "
+                                         "captured; see its geometries in {}", key.first, key.second,
+                                         files.scenes.at(key)));
+
+  // Per thread: eligibility, links, trees.
+  std::vector<ThreadRays> threads;
+  std::vector<TreeRef> trees;
+  const ParentLinker linker(scene, opt.rules);
+  LinkCounts links;
+  int64_t other_scene = 0, invalid = 0, outside_hits = 0;
+  std::map<std::string, int64_t> invalid_by_field;
+  std::string first_invalid;
+  for (const auto& [index, path] : files.ray_files) {
+    ThreadRays& t = threads.emplace_back(MappedRays(path));
+    t.eligible.assign(t.rays.size(), false);
+    for (std::size_t i = 0; i < t.rays.size(); ++i) {
+      const RawRay& r = t.rays[i];
+      if (r.scene != key.first || r.commit != key.second) {
+        ++other_scene;
+        continue;
+      }
+      TraceFieldProblem problem;
+      if (!check_trace_ray(base_ray(r), -1, problem)) {
+        ++invalid;
+        ++invalid_by_field[problem.field];
+        if (first_invalid.empty()) first_invalid = fmt::format("field '{}': {}", problem.field, problem.message);
+        continue;
+      }
+      t.eligible[i] = true;
+      outside_hits += !occluded(r) && r.geom != kInvalidId && (r.inst != kInvalidId || scene.triangle_id(r.geom, r.prim) < 0);
+    }
+    LinkCounts c;
+    t.links = linker.link(t.rays.data(), t.rays.size(), t.eligible, c);
+    links.add(c);
+    group_trees(static_cast<uint32_t>(threads.size() - 1), t, trees);
+  }
+  sort_trees(threads, trees);
+
+  // Outputs, under temporary names until everything is written.
+  fs::create_directories(out_dir);
+  const fs::path dir(out_dir);
+  const std::string ext = opt.binary ? ".vbt" : ".jsonl";
+  const fs::path trace_path = dir / ("trace" + ext), trace_tmp = dir / ("trace.partial" + ext);
+  const fs::path scene_path = dir / "scene.ply", scene_tmp = dir / "scene.partial.ply";
+  const fs::path hits_path = dir / "embree_hits.jsonl", hits_tmp = dir / "embree_hits.partial.jsonl";
+  write_ply_scene(scene_tmp.string(), scene.triangles());
+  TraceHeader header;
+  header.scene = "scene.ply";
+  header.scene_path = scene_path.string();
+  header.generator = "vbsim capture";
+  header.description = fmt::format(
+      "Embree ray queries of `{}` ({} thread{}): {}; parents linked by origin (capture.json)", join(opt.command),
+      threads.size(), threads.size() == 1 ? "" : "s",
+      opt.strip_offsets ? "children start at their parent's hit point with tmin 0, the application's offsets removed"
+                        : "origins, tmin and tmax as the application passed them");
+  std::unique_ptr<TraceSink> sink = create_trace_writer(trace_tmp.string(), header);
+  std::ofstream hits(hits_tmp, std::ios::binary);
+  if (!hits) throw std::runtime_error(fmt::format("{}: cannot create", hits_tmp.string()));
+  std::vector<std::vector<int64_t>> ids(threads.size());
+  for (std::size_t k = 0; k < threads.size(); ++k) ids[k].assign(threads[k].rays.size(), -1);
+  int64_t next_id = 0, moved_origins = 0, cleared_tmin = 0;
+  for (const TreeRef& tree : trees) {
+    const ThreadRays& t = threads[tree.thread];
+    for (uint32_t k = 0; k < tree.count; ++k) {
+      const uint32_t i = t.order[tree.first + k];
+      const RawRay& r = t.rays[i];
+      const RayLink& l = t.links[i];
+      TraceRay tr = base_ray(r);
+      tr.id = ids[tree.thread][i] = next_id++;
+      tr.kind = l.kind;
+      if (l.parent >= 0) {
+        const RawRay& p = t.rays[static_cast<std::size_t>(l.parent)];
+        const int64_t tri = scene.triangle_id(p.geom, p.prim);
+        tr.parent = ids[tree.thread][static_cast<std::size_t>(l.parent)];
+        tr.set_parent_hit(static_cast<int32_t>(tri), p.hit_t, p.u, p.v);
+        tr.sign = dot(tr.d, geometric_normal(scene.triangles()[static_cast<std::size_t>(tri)])) < 0.0f ? 1 : 0;
+        if (opt.strip_offsets) {
+          const Vec3f hit = hit_point_ray({p.org[0], p.org[1], p.org[2]}, {p.dir[0], p.dir[1], p.dir[2]}, p.hit_t);
+          moved_origins += hit != tr.o;
+          cleared_tmin += tr.tmin != 0.0f;
+          tr.o = hit;
+          tr.tmin = 0.0f;
+        }
+      }
+      sink->write(tr);
+      hits << hit_line(tr.id, r, occluded(r) || r.inst != kInvalidId ? -1 : scene.triangle_id(r.geom, r.prim));
+    }
+  }
+  sink->close();
+  hits.close();
+  if (!hits) throw std::runtime_error(fmt::format("{}: write failed", hits_tmp.string()));
+
+  // The report.
+  const auto values = read_process_summary(files.summary);
+  json calls = json::object(), rays = json::object();
+  for (const auto& [k, v] : values) {
+    if (k.rfind("calls.", 0) == 0 && v > 0) calls[k.substr(6)] = v;
+    if (k.rfind("rays.", 0) == 0 && v > 0) rays[k.substr(5)] = v;
+  }
+  json geometries = json::array();
+  for (const CapturedGeometry& g : scene.geometries()) {
+    json e = {{"geomID", g.geom_id}, {"type", embree_geometry_type_name(g.type)},
+              {"status", raw_geometry_status_name(g.status)}};
+    if (g.status == RawGeometryStatus::Captured)
+      e.update({{"first_triangle", g.first_triangle}, {"triangles", g.triangles}, {"vertices", g.vertices}});
+    geometries.push_back(e);
+  }
+  json other_processes = json::array();
+  int64_t other_process_rays = 0;
+  for (const auto& [p, n] : tally_.rays_by_process)
+    if (p != pid) {
+      other_processes.push_back({{"pid", p}, {"rays", n}});
+      other_process_rays += n;
+    }
+  json kinds = json::object();
+  for (int k = 0; k < kRayKindCount; ++k) kinds[ray_kind_name(static_cast<RayKind>(k))] = links.by_kind[k];
+  MergeResult out;
+  out.trace_path = trace_path.string();
+  out.report = {
+      {"command", opt.command},
+      {"pid", pid},
+      {"threads", threads.size()},
+      {"calls", calls},
+      {"rays_by_function", rays},
+      {"rays_in_trace", next_id},
+      {"scene", {{"ordinal", key.first}, {"commit", key.second}, {"triangles", scene.triangles().size()},
+                 {"geometries", geometries}}},
+      {"not_captured", {{"other_processes", other_processes}, {"other_process_rays", other_process_rays},
+                        {"other_scene_or_commit", other_scene}, {"invalid", invalid},
+                        {"invalid_by_field", invalid_by_field}, {"first_invalid", first_invalid}}},
+      {"hits_outside_captured_triangles", outside_hits},
+      {"links", {{"at_hit_point", links.at_hit_point}, {"normal_offset", links.normal_offset},
+                 {"max_normal_offset", links.max_offset}, {"unlinked_intersect", links.unlinked_intersect},
+                 {"unlinked_occluded", links.unlinked_occluded}}},
+      {"kinds", kinds},
+      {"strip_offsets", {{"on", opt.strip_offsets}, {"origins_moved", moved_origins}, {"tmin_cleared", cleared_tmin}}},
+      {"rules", {{"link_ulps", opt.rules.ulps}, {"link_normal_offset", opt.rules.normal_offset},
+                 {"history", opt.rules.history}, {"mirror_radians", opt.rules.mirror_radians}}},
+  };
+  rename_into_place(scene_tmp, scene_path);
+  rename_into_place(hits_tmp, hits_path);
+  rename_into_place(trace_tmp, trace_path);
+  {
+    const fs::path report_tmp = dir / "capture.partial.json";
+    std::ofstream f(report_tmp);
+    f << out.report.dump(2) << "\n";
+    if (!f.flush()) throw std::runtime_error(fmt::format("{}: write failed", report_tmp.string()));
+    f.close();
+    rename_into_place(report_tmp, dir / "capture.json");
+  }
+  std::string by_function;
+  for (const auto& [name, n] : rays.items()) by_function += fmt::format("{}{} {}", by_function.empty() ? "" : ", ", name, n.get<int64_t>());
+  out.summary = fmt::format(
+      "vbsim capture: {} rays from {} thread{} ({}) -> {}\n"
+      "  scene: {} triangles -> {}\n"
+      "  links: {} at the hit point, {} offset along the normal (up to {:.3g} of the hit point's size); "
+      "unlinked: {} intersect, {} occluded\n"
+      "  not captured: {} rays of other processes, {} of other scenes or commits, {} invalid; "
+      "{} hits outside the captured triangles\n",
+      next_id, threads.size(), threads.size() == 1 ? "" : "s", by_function, trace_path.string(),
+      scene.triangles().size(), scene_path.string(), links.at_hit_point, links.normal_offset, links.max_offset,
+      links.unlinked_intersect, links.unlinked_occluded, other_process_rays, other_scene, invalid, outside_hits);
+  return out;
+}
+
+}  // namespace vbsim::capture

@@ -1,0 +1,110 @@
+#include "capture/captured_scene.h"
+
+#include <array>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+namespace vbsim::capture {
+
+namespace {
+
+/// Reads fixed-size items from the snapshot bytes, failing with the file's name when they run out.
+struct Cursor {
+  const std::string& path;
+  const std::string& bytes;
+  std::size_t at = 0;
+
+  void take(void* out, std::size_t n, const char* what) {
+    if (bytes.size() - at < n)
+      throw std::runtime_error(fmt::format("{}: truncated scene snapshot (in {})", path, what));
+    std::memcpy(out, bytes.data() + at, n);
+    at += n;
+  }
+};
+
+}  // namespace
+
+CapturedScene CapturedScene::read(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error(fmt::format("{}: cannot open the scene snapshot", path));
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  Cursor c{path, bytes};
+  RawSceneHeader h;
+  c.take(&h, sizeof h, "the header");
+  if (std::memcmp(h.magic, kRawSceneMagic, sizeof h.magic) != 0)
+    throw std::runtime_error(fmt::format("{}: not a capture scene snapshot", path));
+  CapturedScene s;
+  s.scene_ = h.scene;
+  s.commit_ = h.commit;
+  for (uint32_t g = 0; g < h.geometries; ++g) {
+    RawGeometry rg;
+    c.take(&rg, sizeof rg, "a geometry entry");
+    CapturedGeometry cg;
+    cg.geom_id = rg.geom_id;
+    cg.type = rg.type;
+    cg.status = static_cast<RawGeometryStatus>(rg.status);
+    if (cg.status == RawGeometryStatus::Captured) {
+      std::vector<Vec3f> vertices(rg.vertex_count);
+      for (Vec3f& v : vertices) c.take(&v, 3 * sizeof(float), "vertices");
+      cg.first_triangle = static_cast<int64_t>(s.triangles_.size());
+      cg.triangles = rg.triangle_count;
+      cg.vertices = rg.vertex_count;
+      for (uint32_t t = 0; t < rg.triangle_count; ++t) {
+        std::array<uint32_t, 3> idx;
+        c.take(idx.data(), sizeof idx, "indices");
+        for (uint32_t i : idx)
+          if (i >= rg.vertex_count)
+            throw std::runtime_error(fmt::format(
+                "{}: geometry {} triangle {} names vertex {}, but the vertex buffer holds {}: Embree would read "
+                "past it", path, rg.geom_id, t, i, rg.vertex_count));
+        s.triangles_.push_back({vertices[idx[0]], vertices[idx[1]], vertices[idx[2]]});
+      }
+      if (s.first_by_geom_.size() <= cg.geom_id) {
+        s.first_by_geom_.resize(cg.geom_id + 1, -1);
+        s.count_by_geom_.resize(cg.geom_id + 1, 0);
+      }
+      s.first_by_geom_[cg.geom_id] = cg.first_triangle;
+      s.count_by_geom_[cg.geom_id] = cg.triangles;
+    }
+    s.geometries_.push_back(cg);
+  }
+  if (c.at != bytes.size()) throw std::runtime_error(fmt::format("{}: trailing bytes after the last geometry", path));
+  return s;
+}
+
+int64_t CapturedScene::triangle_id(uint32_t geom_id, uint32_t prim_id) const {
+  if (geom_id >= first_by_geom_.size() || first_by_geom_[geom_id] < 0 || prim_id >= count_by_geom_[geom_id])
+    return -1;
+  return first_by_geom_[geom_id] + prim_id;
+}
+
+const char* embree_geometry_type_name(uint32_t type) {
+  switch (type) {
+    case 0: return "triangle";
+    case 1: return "quad";
+    case 2: return "grid";
+    case 8: return "subdivision";
+    case 50: case 51: case 52: return "point";
+    case 120: return "user";
+    case 121: return "instance";
+    default: return type >= 15 && type <= 60 ? "curve" : "other";
+  }
+}
+
+const char* raw_geometry_status_name(RawGeometryStatus status) {
+  switch (status) {
+    case RawGeometryStatus::Captured: return "captured";
+    case RawGeometryStatus::NotTriangles: return "not triangles";
+    case RawGeometryStatus::MotionBlur: return "motion blur";
+    case RawGeometryStatus::MissingBuffer: return "no vertex or index buffer";
+    case RawGeometryStatus::BadFormat: return "buffer format other than FLOAT3 / UINT3";
+    case RawGeometryStatus::Disabled: return "disabled";
+  }
+  return "unknown";
+}
+
+}  // namespace vbsim::capture

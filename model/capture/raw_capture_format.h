@@ -1,0 +1,95 @@
+// The files the Embree capture shim (model/capture_shim/) writes and `vbsim capture` reads:
+// plain structs, little-endian as the host (the capture runs and is merged on
+// the same machine), shared by both sides; standard library only, since the
+// shim is loaded into applications that know nothing of vbsim.
+//
+// In the directory named by VBSIM_CAPTURE_DIR, per process <pid>:
+//   rays-<pid>-<k>.bin          RawRay records of the k-th thread that traced
+//                               a ray, in the order that thread made its calls
+//   scene-<pid>-<s>-<c>.bin     scene s (0-based, in rtcNewScene order) at its
+//                               c-th rtcCommitScene (from 1): RawSceneHeader,
+//                               then per attached geometry a RawGeometry and,
+//                               when captured, its vertices and indices
+//   process-<pid>.txt           written when the process exits normally:
+//                               "key value" lines (calls and rays per API,
+//                               threads, scenes, commits); its absence means
+//                               the process did not finish
+#pragma once
+#include <cstdint>
+
+namespace vbsim::capture {
+
+constexpr const char* kCaptureDirEnv = "VBSIM_CAPTURE_DIR";
+
+enum class RawOp : uint16_t { Intersect = 1, Occluded = 2 };
+
+/// The Embree entry point a ray came through.
+enum class RawApi : uint16_t { One = 0, Four, Eight, Sixteen, OneM, OneMp, NM, Np };
+constexpr int kRawApiCount = 8;
+/// Name of the intersect (or occluded) function of `api`, e.g. "rtcIntersect4".
+inline const char* raw_api_name(RawApi api, bool occluded) {
+  static const char* const intersect[] = {"rtcIntersect1",  "rtcIntersect4",   "rtcIntersect8",  "rtcIntersect16",
+                                          "rtcIntersect1M", "rtcIntersect1Mp", "rtcIntersectNM", "rtcIntersectNp"};
+  static const char* const occlude[] = {"rtcOccluded1",  "rtcOccluded4",   "rtcOccluded8",  "rtcOccluded16",
+                                        "rtcOccluded1M", "rtcOccluded1Mp", "rtcOccludedNM", "rtcOccludedNp"};
+  const int k = static_cast<int>(api);
+  return k < kRawApiCount ? (occluded ? occlude[k] : intersect[k]) : "unknown";
+}
+
+constexpr uint32_t kInvalidId = 0xffffffffu;  ///< RTC_INVALID_GEOMETRY_ID
+
+/// One traced ray: what the application passed and what Embree returned.
+struct RawRay {
+  uint16_t op;       ///< RawOp
+  uint16_t api;      ///< RawApi
+  uint32_t scene;    ///< scene ordinal in the process
+  uint32_t commit;   ///< that scene's commits so far (0: traced before any commit)
+  uint32_t ray_flags;
+  float org[3];
+  float tnear;
+  float dir[3];
+  float time;
+  float tfar;        ///< as passed in
+  uint32_t mask;
+  float hit_t;       ///< tfar after the call: the hit distance; unchanged on a miss; -inf when occluded
+  float ng[3];       ///< Embree's unnormalised geometric normal (intersect hits)
+  float u, v;
+  uint32_t geom;     ///< geomID of the hit, kInvalidId for a miss or an occlusion query
+  uint32_t prim;
+  uint32_t inst;     ///< instID[0]: kInvalidId unless the hit is inside an instance
+  uint32_t reserved;
+};
+static_assert(sizeof(RawRay) == 96, "RawRay is a 96-byte record");
+
+constexpr char kRawSceneMagic[8] = {'V', 'B', 'C', 'A', 'P', 'S', 'C', '1'};
+
+struct RawSceneHeader {
+  char magic[8];
+  uint32_t scene;
+  uint32_t commit;
+  uint32_t geometries;  ///< RawGeometry entries that follow
+  uint32_t reserved;
+};
+static_assert(sizeof(RawSceneHeader) == 24, "RawSceneHeader is 24 bytes");
+
+/// Why a geometry's triangles are (not) in the snapshot.
+enum class RawGeometryStatus : uint32_t {
+  Captured = 0,       ///< triangles: vertex_count float3, then triangle_count uint3 follow
+  NotTriangles = 1,   ///< another geometry type (quads, curves, instances, user, ...)
+  MotionBlur = 2,     ///< more than one time step
+  MissingBuffer = 3,  ///< no vertex or index buffer set
+  BadFormat = 4,      ///< a buffer format other than FLOAT3 vertices and UINT3 indices
+  Disabled = 5,       ///< rtcDisableGeometry: Embree does not trace it
+};
+
+struct RawGeometry {
+  uint32_t geom_id;
+  uint32_t type;            ///< RTCGeometryType
+  uint32_t status;          ///< RawGeometryStatus
+  uint32_t vertex_count;    ///< 0 unless captured
+  uint32_t triangle_count;  ///< 0 unless captured
+  uint32_t reserved;
+};
+static_assert(sizeof(RawGeometry) == 24, "RawGeometry is 24 bytes");
+
+}  // namespace vbsim::capture

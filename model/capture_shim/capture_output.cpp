@@ -1,0 +1,214 @@
+#include "capture_output.h"
+
+#include <fcntl.h>
+#include <pthread.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
+#include <mutex>
+#include <vector>
+
+namespace vbsim::shim {
+
+namespace {
+
+using capture::RawApi;
+using capture::RawRay;
+
+constexpr std::size_t kBufferRecords = 4096;  // 384 KiB per tracing thread
+
+/// One tracing thread's records. The owner locks `m` per record (uncontended);
+/// the exit flush locks it too, so a late ray and the flush never interleave.
+struct ThreadBuffer {
+  std::mutex m;
+  int fd = -1;
+  int index = 0;
+  std::size_t used = 0;
+  bool closed = false;
+  RawRay records[kBufferRecords];
+};
+
+struct Process {
+  std::mutex m;  // guards `buffers`, `next_index` and the files
+  std::vector<ThreadBuffer*> buffers;
+  int next_index = 0;
+  std::string dir;
+  bool enabled = false;
+  std::atomic<bool> closing{false};
+  std::atomic<bool> write_failed{false};
+  long pid = 0;
+  std::atomic<uint64_t> calls[2][capture::kRawApiCount] = {};
+  std::atomic<uint64_t> rays[2][capture::kRawApiCount] = {};
+  std::atomic<uint64_t> scenes{0}, commits{0};
+};
+
+Process& process() {
+  static Process* p = [] {
+    auto* q = new Process;  // never destroyed: threads may still trace during exit
+    const char* dir = std::getenv(capture::kCaptureDirEnv);
+    q->enabled = dir && *dir;
+    if (q->enabled) q->dir = dir;
+    q->pid = static_cast<long>(::getpid());
+    return q;
+  }();
+  return *p;
+}
+
+bool write_all(int fd, const void* data, std::size_t n) {
+  const char* p = static_cast<const char*>(data);
+  while (n > 0) {
+    const ssize_t k = ::write(fd, p, n);
+    if (k < 0 && errno == EINTR) continue;
+    if (k <= 0) return false;
+    p += k;
+    n -= static_cast<std::size_t>(k);
+  }
+  return true;
+}
+
+int create_file(const std::string& name) {
+  const std::string path = process().dir + "/" + name;
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) process().write_failed = true;
+  return fd;
+}
+
+/// Writes the buffered records of `b` (its mutex held).
+void flush_locked(ThreadBuffer& b) {
+  if (b.used == 0) return;
+  if (b.fd < 0 || !write_all(b.fd, b.records, b.used * sizeof(RawRay))) process().write_failed = true;
+  b.used = 0;
+}
+
+void close_locked(ThreadBuffer& b) {
+  flush_locked(b);
+  if (b.fd >= 0) ::close(b.fd);
+  b.fd = -1;
+  b.closed = true;
+}
+
+ThreadBuffer* new_buffer() {
+  Process& p = process();
+  auto* b = new ThreadBuffer;
+  std::lock_guard<std::mutex> lock(p.m);
+  b->index = p.next_index++;
+  b->fd = create_file("rays-" + std::to_string(p.pid) + "-" + std::to_string(b->index) + ".bin");
+  p.buffers.push_back(b);
+  return b;
+}
+
+/// The calling thread's buffer, released (flushed, closed, freed) at thread exit.
+struct ThreadSlot {
+  ThreadBuffer* buffer = nullptr;
+  ~ThreadSlot() {
+    if (!buffer) return;
+    Process& p = process();
+    std::lock_guard<std::mutex> lock(p.m);
+    for (auto it = p.buffers.begin(); it != p.buffers.end(); ++it)
+      if (*it == buffer) {
+        {
+          std::lock_guard<std::mutex> bl(buffer->m);
+          close_locked(*buffer);
+        }
+        p.buffers.erase(it);
+        delete buffer;
+        break;
+      }
+    buffer = nullptr;
+  }
+};
+thread_local ThreadSlot t_slot;
+
+void write_summary() {
+  Process& p = process();
+  std::string s = "pid " + std::to_string(p.pid) + "\n";
+  for (int op = 0; op < 2; ++op)
+    for (int api = 0; api < capture::kRawApiCount; ++api) {
+      const char* name = capture::raw_api_name(static_cast<RawApi>(api), op == 1);
+      s += std::string("calls.") + name + " " + std::to_string(p.calls[op][api].load()) + "\n";
+      s += std::string("rays.") + name + " " + std::to_string(p.rays[op][api].load()) + "\n";
+    }
+  s += "threads " + std::to_string(p.next_index) + "\n";
+  s += "scenes " + std::to_string(p.scenes.load()) + "\n";
+  s += "commits " + std::to_string(p.commits.load()) + "\n";
+  s += std::string("write_failed ") + (p.write_failed ? "1" : "0") + "\n";
+  s += "complete 1\n";
+  write_capture_file("process-" + std::to_string(p.pid) + ".txt", s);
+}
+
+/// At process exit (after atexit handlers and the main thread's thread-local
+/// destructors): flush every thread still registered, then the summary.
+__attribute__((destructor)) void finish_capture() {
+  Process& p = process();
+  if (!p.enabled || p.closing.exchange(true)) return;
+  {
+    std::lock_guard<std::mutex> lock(p.m);
+    for (ThreadBuffer* b : p.buffers) {
+      std::lock_guard<std::mutex> bl(b->m);
+      close_locked(*b);
+    }
+  }
+  write_summary();
+}
+
+// fork(): the child keeps only the forking thread. It must not write the
+// parent's buffered records again, so it drops every buffer and starts afresh
+// under its own pid.
+void before_fork() { process().m.lock(); }
+void after_fork_parent() { process().m.unlock(); }
+void after_fork_child() {
+  Process& p = process();
+  p.buffers.clear();  // the parent's buffers: abandoned, never written from here
+  p.next_index = 0;
+  p.pid = static_cast<long>(::getpid());
+  for (auto& op : p.calls)
+    for (auto& c : op) c = 0;
+  for (auto& op : p.rays)
+    for (auto& c : op) c = 0;
+  p.scenes = 0;
+  p.commits = 0;
+  t_slot.buffer = nullptr;
+  p.m.unlock();
+}
+
+__attribute__((constructor)) void start_capture() {
+  if (process().enabled) pthread_atfork(before_fork, after_fork_parent, after_fork_child);
+}
+
+}  // namespace
+
+bool capture_enabled() {
+  const Process& p = process();
+  return p.enabled && !p.closing.load(std::memory_order_relaxed);
+}
+
+void record_ray(const capture::RawRay& ray) {
+  ThreadBuffer* b = t_slot.buffer;
+  if (!b) b = t_slot.buffer = new_buffer();
+  std::lock_guard<std::mutex> lock(b->m);
+  if (b->closed) return;  // the process is exiting
+  b->records[b->used++] = ray;
+  process().rays[ray.op == static_cast<uint16_t>(capture::RawOp::Occluded)][ray.api].fetch_add(1, std::memory_order_relaxed);
+  if (b->used == kBufferRecords) flush_locked(*b);
+}
+
+void count_call(capture::RawApi api, bool occluded) {
+  process().calls[occluded][static_cast<int>(api)].fetch_add(1, std::memory_order_relaxed);
+}
+
+void write_capture_file(const std::string& name, const std::string& bytes) {
+  Process& p = process();
+  const int fd = create_file(name);
+  if (fd < 0) return;
+  if (!write_all(fd, bytes.data(), bytes.size())) p.write_failed = true;
+  ::close(fd);
+}
+
+long capture_pid() { return process().pid; }
+void count_scene() { process().scenes.fetch_add(1); }
+void count_commit() { process().commits.fetch_add(1); }
+
+}  // namespace vbsim::shim

@@ -1,0 +1,193 @@
+#include "scene_registry.h"
+
+#include <atomic>
+#include <cstring>
+#include <map>
+#include <mutex>
+#include <string>
+#include <unordered_map>
+
+#include "capture_output.h"
+#include "real_embree.h"
+
+namespace vbsim::shim {
+
+namespace {
+
+using capture::RawGeometry;
+using capture::RawGeometryStatus;
+
+struct Binding {
+  RTCFormat format = RTC_FORMAT_UNDEFINED;
+  const void* ptr = nullptr;  // shared or new buffer
+  RTCBuffer buffer = nullptr;  // else an RTCBuffer at `offset`
+  std::size_t offset = 0, stride = 0, count = 0;
+};
+
+struct Geometry {
+  RTCGeometryType type = RTC_GEOMETRY_TYPE_TRIANGLE;
+  unsigned time_steps = 1;
+  bool enabled = true;
+  std::map<std::pair<int, unsigned>, Binding> buffers;  // (RTCBufferType, slot)
+};
+
+struct Scene {
+  uint32_t ordinal = 0;
+  uint32_t commit = 0;
+  std::map<unsigned, RTCGeometry> attached;  // geomID -> geometry, ascending
+  std::string last_snapshot;  // bytes after the header, to skip unchanged commits
+};
+
+struct Registry {
+  std::mutex m;
+  std::unordered_map<RTCGeometry, Geometry> geometries;
+  std::unordered_map<RTCScene, Scene> scenes;
+  uint32_t next_scene = 0;
+  std::atomic<uint64_t> epoch{1};  // bumped whenever a stamp may change
+};
+
+Registry& registry() {
+  static Registry* r = new Registry;  // never destroyed: rays may arrive during exit
+  return *r;
+}
+
+const unsigned char* data_of(const Binding& b) {
+  if (b.ptr) return static_cast<const unsigned char*>(b.ptr);
+  if (!b.buffer) return nullptr;
+  VBSIM_REAL(rtcGetBufferData);
+  const auto* base = static_cast<const unsigned char*>(real(b.buffer));
+  return base ? base + b.offset : nullptr;
+}
+
+/// One geometry's entry in a snapshot: its RawGeometry, then its data when captured.
+void append_geometry(std::string& out, unsigned geom_id, const Geometry& g) {
+  RawGeometry rg{};
+  rg.geom_id = geom_id;
+  rg.type = static_cast<uint32_t>(g.type);
+  const auto vb = g.buffers.find({RTC_BUFFER_TYPE_VERTEX, 0});
+  const auto ib = g.buffers.find({RTC_BUFFER_TYPE_INDEX, 0});
+  const unsigned char* vdata = vb == g.buffers.end() ? nullptr : data_of(vb->second);
+  const unsigned char* idata = ib == g.buffers.end() ? nullptr : data_of(ib->second);
+  RawGeometryStatus status = RawGeometryStatus::Captured;
+  if (g.type != RTC_GEOMETRY_TYPE_TRIANGLE) status = RawGeometryStatus::NotTriangles;
+  else if (!g.enabled) status = RawGeometryStatus::Disabled;
+  else if (g.time_steps != 1) status = RawGeometryStatus::MotionBlur;
+  else if (!vdata || !idata) status = RawGeometryStatus::MissingBuffer;
+  else if (vb->second.format != RTC_FORMAT_FLOAT3 || ib->second.format != RTC_FORMAT_UINT3)
+    status = RawGeometryStatus::BadFormat;
+  rg.status = static_cast<uint32_t>(status);
+  if (status == RawGeometryStatus::Captured) {
+    rg.vertex_count = static_cast<uint32_t>(vb->second.count);
+    rg.triangle_count = static_cast<uint32_t>(ib->second.count);
+  }
+  out.append(reinterpret_cast<const char*>(&rg), sizeof rg);
+  if (status != RawGeometryStatus::Captured) return;
+  // The buffers as Embree sees them: element i at data + i * stride.
+  for (std::size_t i = 0; i < rg.vertex_count; ++i)
+    out.append(reinterpret_cast<const char*>(vdata + i * vb->second.stride), 3 * sizeof(float));
+  for (std::size_t i = 0; i < rg.triangle_count; ++i)
+    out.append(reinterpret_cast<const char*>(idata + i * ib->second.stride), 3 * sizeof(uint32_t));
+}
+
+thread_local struct {
+  RTCScene scene = nullptr;
+  uint64_t epoch = 0;
+  SceneStamp stamp;
+} t_cache;
+
+}  // namespace
+
+void on_new_scene(RTCScene scene) {
+  Registry& r = registry();
+  std::lock_guard<std::mutex> lock(r.m);
+  Scene s;
+  s.ordinal = r.next_scene++;
+  r.scenes[scene] = std::move(s);  // a handle reused after a release starts afresh
+  r.epoch.fetch_add(1);
+  count_scene();
+}
+
+void on_new_geometry(RTCGeometry geometry, RTCGeometryType type) {
+  Registry& r = registry();
+  std::lock_guard<std::mutex> lock(r.m);
+  Geometry g;
+  g.type = type;
+  r.geometries[geometry] = std::move(g);
+}
+
+void on_attach(RTCScene scene, RTCGeometry geometry, unsigned geom_id) {
+  Registry& r = registry();
+  std::lock_guard<std::mutex> lock(r.m);
+  r.scenes[scene].attached[geom_id] = geometry;
+}
+
+void on_detach(RTCScene scene, unsigned geom_id) {
+  Registry& r = registry();
+  std::lock_guard<std::mutex> lock(r.m);
+  r.scenes[scene].attached.erase(geom_id);
+}
+
+void on_enable(RTCGeometry geometry, bool enabled) {
+  Registry& r = registry();
+  std::lock_guard<std::mutex> lock(r.m);
+  r.geometries[geometry].enabled = enabled;
+}
+
+void on_time_steps(RTCGeometry geometry, unsigned count) {
+  Registry& r = registry();
+  std::lock_guard<std::mutex> lock(r.m);
+  r.geometries[geometry].time_steps = count;
+}
+
+void on_buffer(RTCGeometry geometry, RTCBufferType type, unsigned slot, RTCFormat format, const void* ptr,
+               RTCBuffer buffer, std::size_t offset, std::size_t stride, std::size_t count) {
+  Registry& r = registry();
+  std::lock_guard<std::mutex> lock(r.m);
+  Binding b;
+  b.format = format;
+  b.ptr = ptr ? static_cast<const unsigned char*>(ptr) + offset : nullptr;
+  b.buffer = ptr ? nullptr : buffer;
+  b.offset = offset;
+  b.stride = stride;
+  b.count = count;
+  r.geometries[geometry].buffers[{static_cast<int>(type), slot}] = b;
+}
+
+void on_commit(RTCScene scene) {
+  Registry& r = registry();
+  std::lock_guard<std::mutex> lock(r.m);
+  Scene& s = r.scenes[scene];
+  std::string body;
+  for (const auto& [geom_id, geometry] : s.attached) append_geometry(body, geom_id, r.geometries[geometry]);
+  count_commit();
+  if (s.commit > 0 && body == s.last_snapshot) return;  // the same triangles: the same snapshot
+  ++s.commit;
+  capture::RawSceneHeader h{};
+  std::memcpy(h.magic, capture::kRawSceneMagic, sizeof h.magic);
+  h.scene = s.ordinal;
+  h.commit = s.commit;
+  h.geometries = static_cast<uint32_t>(s.attached.size());
+  std::string file(reinterpret_cast<const char*>(&h), sizeof h);
+  file += body;
+  write_capture_file("scene-" + std::to_string(capture_pid()) + "-" + std::to_string(s.ordinal) + "-" +
+                         std::to_string(s.commit) + ".bin",
+                     file);
+  s.last_snapshot = std::move(body);
+  r.epoch.fetch_add(1);
+}
+
+SceneStamp scene_stamp(RTCScene scene) {
+  Registry& r = registry();
+  const uint64_t epoch = r.epoch.load(std::memory_order_acquire);
+  if (t_cache.scene == scene && t_cache.epoch == epoch) return t_cache.stamp;
+  std::lock_guard<std::mutex> lock(r.m);
+  SceneStamp stamp;
+  const auto it = r.scenes.find(scene);
+  if (it != r.scenes.end()) stamp = {it->second.ordinal, it->second.commit};
+  t_cache.scene = scene;
+  t_cache.epoch = epoch;
+  t_cache.stamp = stamp;
+  return stamp;
+}
+
+}  // namespace vbsim::shim

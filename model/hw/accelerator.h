@@ -1,0 +1,165 @@
+// Accelerator: the top module of the cycle-level model, the patent's FIG. 12
+// as a SystemC module hierarchy (docs/hw-model.md):
+//
+//   accelerator                 Accelerator (this): the scheduler process
+//     ray_source                RaySource: the ray-emission interface (sign bit, emission-time methods)
+//     dispatcher                Dispatcher
+//     core_0 .. core_{N-1}      RayTestCore (sc_vector): ray slots with their BvhSteppers, and
+//       box_unit                  BoxUnit
+//       triangle_tester           TriangleTester (three-half-plane, front/back bit)
+//       avoidance_unit            AvoidanceUnit
+//       l1_cache                  L1Cache
+//     l2_cache                  L2Cache, whose misses leave through a TLM-2.0 initiator socket
+//     memory_socket             (hierarchical) to
+//     dram                      Dram, the built-in TLM-2.0 target (absent with external_memory)
+//     memory                    IdealMemory in place of the caches (memory.ideal)
+//     result_sink               ResultSink
+//
+// Time: one SC_METHOD (activate) runs the one scheduler (CycleEngine). An
+// activation at cycle c handles every event of [c, c + sim.quantum_cycles) and
+// sleeps until the later of c + quantum and the next event (next_trigger, no
+// clock); after the last ray one more activation lands SystemC time on the last
+// cycle, so a run lasts cycles x period of SystemC time. With an approximately
+// timed memory and requests outstanding it handles each cycle only when SystemC
+// time has reached it and that time step has settled (no other process pending
+// at it), and no further than the target's lookahead allows.
+//
+// Use in a user's sc_main: construct it (in any simulation context), bind
+// memory_socket() when external_memory is set, give it a trace (set_feed) and a
+// result callback, sc_start(), then check() and read report(). Several runs in
+// one process: one simulation context each (hw/simulation_context.h).
+#pragma once
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <exception>
+#include <functional>
+#include <memory>
+#include <string>
+
+#include <nlohmann/json.hpp>
+#include <systemc>
+#include <tlm>
+
+#include "hw/accelerator_units.h"
+#include "hw/cycle_clock.h"
+#include "hw/cycle_engine.h"
+#include "hw/dispatcher.h"
+#include "hw/dram.h"
+#include "hw/hw_config.h"
+#include "hw/ideal_memory.h"
+#include "hw/l2_cache.h"
+#include "hw/ray_feed.h"
+#include "hw/ray_source.h"
+#include "hw/ray_test_core.h"
+#include "hw/result_sink.h"
+#include "hw/stat_provider.h"
+#include "replay/functional_replayer.h"
+#include "scene/bvh.h"
+#include "scene/scene.h"
+
+namespace vbsim::hw {
+
+/// The checks an Accelerator's configuration must pass, run before any part of
+/// the module exists (a base class constructed first).
+struct AcceleratorChecks {
+  AcceleratorChecks(const HwConfig& config, const Bvh& bvh);
+};
+
+class Accelerator final : private AcceleratorChecks, public sc_core::sc_module, public StatProvider {
+ public:
+  /// Builds the hierarchy for `config` (checked: throws std::invalid_argument
+  /// naming the field) on `scene`/`bvh` (which outlive it) with the method and
+  /// tester of `options`; `units` may replace built-in units. Throws
+  /// std::runtime_error when the BVH is deeper than the traversal stack.
+  Accelerator(sc_core::sc_module_name name, const HwConfig& config, const Scene& scene, const Bvh& bvh,
+              const ReplayOptions& options, const AcceleratorUnits& units = {});
+  ~Accelerator() override;
+
+  /// The L2's TLM-2.0 initiator socket, to bind to a memory target
+  /// (external_memory); throws std::logic_error with an ideal memory.
+  tlm::tlm_initiator_socket<>& memory_socket();
+
+  // ---- before sc_start ----
+  void set_feed(RayFeed feed) { source_->set_feed(std::move(feed)); }
+  /// How errors found in a ray (a child before its parent) name its line.
+  void set_locator(RayLocator locate) { source_->set_locator(std::move(locate)); }
+  /// Receives every finished ray's cycles (ready, emitted, started, finished) and slot.
+  void set_ray_times(RayTimesSink sink) { ray_times_ = std::move(sink); }
+  void set_result_callback(RayResultSink callback) { sink_->set_callback(std::move(callback)); }
+  /// Keep parent rays for intended origins (default true; parentless benchmark rays need not).
+  void set_track_parents(bool on) { replayer_.set_track_parents(on); }
+  /// Set (e.g. by SIGINT) to end the run early; the run is then partial.
+  void set_stop_flag(const std::atomic<bool>* stop) { stop_ = stop; }
+  /// Called about every quarter second of wall time during the run.
+  void set_progress(std::function<void(const CycleEngine&)> progress) { progress_ = std::move(progress); }
+  /// Records per-instance values (VCD) and busy intervals (timeline); either may be null.
+  void set_tracing(VcdRecorder* vcd, TimelineRecorder* timeline);
+
+  // ---- after sc_start ----
+  /// Rethrows an error raised inside the simulation; throws std::runtime_error
+  /// naming the stuck slots when the run ended with rays unfinished although it
+  /// was not stopped (a deadlock, or a memory target that never answered), and
+  /// when the rays read and the rays finished differ.
+  void check() const;
+  bool partial() const { return engine_ && engine_->stopped(); }
+  /// The chip-wide totals, summed from the modules.
+  HwCounters chip_counters() const;
+  /// The memory section of the stats (the shape of earlier versions' `hw.memory.port`).
+  nlohmann::json memory_stats() const;
+  SystemCRun systemc_run() const;
+  /// The `hw` section: chip-wide figures, memory, `instances` (every module's statistics).
+  nlohmann::json hw_json();
+  /// The ray source's emission: waits for parents, for the window, for slots (`hw.emission`).
+  nlohmann::json emission_json() const;
+  std::string hw_table();
+  FunctionalReplayer& replayer() { return replayer_; }
+  RayTestCore& core(size_t i) { return cores_[i]; }
+  size_t cores() const { return cores_.size(); }
+  IdealMemory* ideal_memory() { return ideal_.get(); }  ///< null with the caches
+  L2Cache* l2() { return l2_.get(); }                    ///< null with an ideal memory
+  const HwConfig& config() const { return config_; }
+  const CycleEngine* engine() const { return engine_.get(); }
+
+  const char* unit_kind() const override { return "Accelerator"; }
+  nlohmann::json parameters() const override;
+
+ private:
+  SC_HAS_PROCESS(Accelerator);
+  void start_of_simulation() override;
+  void activate();
+  void schedule_next(uint64_t now);
+  bool at_busy() const { return at_ && l2_ && (l2_->busy() || l2_->next_response_cycle() != kPendingCycle); }
+  EngineParts engine_parts();
+
+  HwConfig config_;
+  const Bvh& bvh_;
+  FunctionalReplayer replayer_;
+  CycleClock clock_;
+  bool at_;
+  bool avoidance_in_use_;
+  std::unique_ptr<RaySource> source_;
+  std::unique_ptr<sc_core::sc_module> dispatcher_module_;
+  DispatchIf* dispatcher_ = nullptr;
+  sc_core::sc_vector<RayTestCore> cores_;
+  std::unique_ptr<IdealMemory> ideal_;
+  std::unique_ptr<L2Cache> l2_;
+  std::unique_ptr<tlm::tlm_initiator_socket<>> memory_socket_;
+  std::unique_ptr<Dram> dram_;
+  std::unique_ptr<ResultSink> sink_;
+  std::unique_ptr<LineFillIf> no_fill_;  // the L2's answer path for cores whose L1 was replaced
+
+  std::unique_ptr<CycleEngine> engine_;
+  RayTimesSink ray_times_;
+  VcdRecorder* vcd_ = nullptr;
+  TimelineRecorder* timeline_ = nullptr;
+  const std::atomic<bool>* stop_ = nullptr;
+  std::function<void(const CycleEngine&)> progress_;
+  sc_core::sc_event kick_;
+  uint64_t limit_ = 0;  // the scheduler handles events before this cycle (lowered by AT requests)
+  uint64_t activations_ = 0;
+  std::exception_ptr error_;
+  std::chrono::steady_clock::time_point last_progress_;
+};
+
+}  // namespace vbsim::hw

@@ -1,0 +1,47 @@
+// AcceleratorUnits: replacements for the accelerator's built-in units. Each
+// factory, when set, is called while the enclosing module is being built (so
+// the new module becomes its child in the hierarchy, under the given name) and
+// returns a module implementing the unit's interface (hw/unit_interfaces.h),
+// which the enclosing module's port is bound to:
+//
+//   box_unit, triangle_tester, avoidance_unit   PipelineIf     (in each core)
+//   l1_cache                                     MemoryReadIf   (in each core: the core's whole
+//                                                                memory path; it does not reach the L2)
+//   dispatcher                                   DispatchIf
+//
+// The memory behind the L2 is replaced at the TLM-2.0 socket instead
+// (Accelerator::memory_socket with external_memory set). A replaced unit
+// changes when things happen; what the rays hit stays the datapath's.
+#pragma once
+#include <cstdint>
+#include <functional>
+#include <memory>
+
+#include <systemc>
+
+#include "hw/hw_config.h"
+
+namespace vbsim::hw {
+
+struct AcceleratorUnits {
+  /// name: the instance's name; core: the core it belongs to; config: the accelerator's.
+  using CoreUnitFactory =
+      std::function<std::unique_ptr<sc_core::sc_module>(const char* name, uint32_t core, const HwConfig& config)>;
+  using UnitFactory = std::function<std::unique_ptr<sc_core::sc_module>(const char* name, const HwConfig& config)>;
+
+  CoreUnitFactory box_unit, triangle_tester, avoidance_unit, l1_cache;
+  UnitFactory dispatcher;
+  /// Leave the L2's TLM-2.0 socket (Accelerator::memory_socket) for the user to
+  /// bind to their own memory target instead of the built-in Dram.
+  bool external_memory = false;
+};
+
+/// `m` as interface `If`: throws std::invalid_argument naming the instance
+/// when the replacement does not implement it.
+template <class If>
+If& replacement_as(sc_core::sc_module& m, const char* interface_name) {
+  if (auto* i = dynamic_cast<If*>(&m)) return *i;
+  throw std::invalid_argument(std::string(m.name()) + ": a replacement unit must implement " + interface_name);
+}
+
+}  // namespace vbsim::hw

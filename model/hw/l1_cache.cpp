@@ -1,0 +1,182 @@
+#include "hw/l1_cache.h"
+
+#include <algorithm>
+
+#include "hw/l2_cache_inline.h"
+
+namespace vbsim::hw {
+
+namespace {
+
+uint32_t log2_of(uint32_t power_of_two) {
+  uint32_t s = 0;
+  while ((uint32_t{1} << s) < power_of_two) ++s;
+  return s;
+}
+
+}  // namespace
+
+L1Cache::L1Cache(sc_core::sc_module_name name, const CacheConfig& config, uint32_t core, uint32_t first_slot,
+                 uint32_t slots)
+    : sc_core::sc_module(name), target("target"), next("next"), fill_target("fill_target"), done("done"),
+      level_(config), config_(config), core_(core), first_slot_(first_slot), line_shift_(log2_of(config.line_bytes)),
+      pending_(slots) {
+  target.bind(*this);
+  fill_target.bind(*this);
+  declare_stat("reads", "reads", "reads by the core (a node, a leaf's triangles, a stack refill)", reads_);
+  declare_stat("bytes", "bytes", "bytes the core read", bytes_);
+  declare_stat("accesses", "lines", "line lookups (every line a read spans)", [this] { return counters().accesses; });
+  declare_stat("hits", "lines", "lookups that found their line filled", [this] { return counters().hits; });
+  declare_stat("merges", "lines", "lookups that met their line's miss in flight and waited for its fill",
+               [this] { return counters().merges; });
+  declare_stat("misses", "lines", "lookups sent on to the L2", [this] { return counters().misses; });
+  declare_stat("mshr_stall_cycles", "cycles", "cycles misses waited for a free MSHR",
+               [this] { return counters().mshr_stall_cycles; });
+  declare_stat("misses_sent_late", "lines",
+               "misses that waited for an MSHR whose fill was not yet known (approximately timed memory)",
+               misses_sent_late_);
+  declare_stat("hit_rate", "ratio", "hits / accesses", [this] {
+    const LevelCounters c = counters();
+    return c.accesses ? static_cast<double>(c.hits) / static_cast<double>(c.accesses) : 0.0;
+  });
+}
+
+void L1Cache::connect_fast(L2Cache* l2) {
+  l2_ = l2;
+  l2_tags_ = l2 ? &l2->tags() : nullptr;
+  shape_ = !l2 || config_.ways != 4 ? Shape::Any
+           : l2->ways() == 8        ? Shape::L1x4L2x8
+           : l2->ways() == 16       ? Shape::L1x4L2x16
+                                    : Shape::Any;
+}
+
+nlohmann::json L1Cache::parameters() const {
+  return {{"core", core_},
+          {"size_bytes", config_.size_bytes},
+          {"ways", config_.ways},
+          {"line_bytes", config_.line_bytes},
+          {"hit_latency", config_.hit_latency},
+          {"mshrs", config_.mshrs}};
+}
+
+uint64_t L1Cache::read_direct(uint64_t addr, uint32_t bytes, uint64_t now, uint32_t slot) {
+  switch (shape_) {  // the presets' associativities: loops unrolled, no switch per lookup
+    case Shape::L1x4L2x8: return read_shaped<4, 8>(addr, bytes, now, slot);
+    case Shape::L1x4L2x16: return read_shaped<4, 16>(addr, bytes, now, slot);
+    default: return read_shaped<0, 0>(addr, bytes, now, slot);
+  }
+}
+
+template <uint32_t L2Ways>
+__attribute__((always_inline)) inline uint64_t L1Cache::next_level(uint64_t line, uint64_t t) {
+  return l2_ ? l2_->read_line_inline<L2Ways>(line, t, core_) : next->read_line(line, t, core_);
+}
+
+// Inlined into both of read_shaped()'s calls (the first line's, the loop's).
+template <uint32_t L1Ways, uint32_t L2Ways>
+__attribute__((always_inline)) inline uint64_t L1Cache::read_line(uint64_t line, uint64_t now, uint32_t slot) {
+  const CacheLevel::Access a = level_.access<L1Ways>(line, now);
+  if (a.outcome != CacheLevel::Outcome::Miss) {
+    if (__builtin_expect(a.ready == kPendingCycle, 0)) wait_for(line, slot, now);  // merge with a pending miss
+    return a.ready;
+  }
+  if (__builtin_expect(a.start == kPendingCycle, 0)) {  // every MSHR waits for a fill not known yet
+    level_.install<L1Ways>(line, kPendingCycle, now);
+    defer_miss(line, slot, now);
+    return kPendingCycle;
+  }
+  const uint64_t fill = next_level<L2Ways>(line, a.start + level_.hit_latency());
+  level_.fill<L1Ways>(line, fill, a.start);
+  if (__builtin_expect(vcd_ != nullptr, 0)) trace_miss(a.start, fill);
+  if (__builtin_expect(fill == kPendingCycle, 0)) wait_for(line, slot, now);
+  return fill;
+}
+
+template <uint32_t L1Ways, uint32_t L2Ways>
+uint64_t L1Cache::read_shaped(uint64_t addr, uint32_t bytes, uint64_t now, uint32_t slot) {
+  const uint64_t first = addr >> line_shift_;
+  const uint64_t last = (addr + (bytes ? bytes - 1 : 0)) >> line_shift_;
+  uint64_t ready = read_line<L1Ways, L2Ways>(first, now, slot);  // a node read: its only line
+  uint32_t unknown = 0;
+  if (__builtin_expect(ready == kPendingCycle, 0)) ready = 0, unknown = 1;
+  for (uint64_t line = first + 1; line <= last; ++line) {
+    const uint64_t r = read_line<L1Ways, L2Ways>(line, now, slot);
+    if (__builtin_expect(r == kPendingCycle, 0)) ++unknown;
+    else if (r > ready) ready = r;
+  }
+  if (reads_ == 0) first_now_ = now;
+  ++reads_;
+  bytes_ += bytes;
+  if (__builtin_expect(unknown != 0, 0)) return pend_read(slot, unknown, ready);
+  if (ready > last_ready_) last_ready_ = ready;
+  return ready;
+}
+
+void L1Cache::set_tracing(VcdRecorder* vcd) {
+  vcd_misses_ = vcd ? vcd->signal(name(), "misses_in_flight") : VcdRecorder::kNoSignal;
+  vcd_ = vcd_misses_ == VcdRecorder::kNoSignal ? nullptr : vcd;
+}
+
+void L1Cache::trace_miss(uint64_t start, uint64_t fill) {
+  vcd_->add(vcd_misses_, start, +1);
+  if (fill != kPendingCycle) vcd_->add(vcd_misses_, fill, -1);  // else when line_filled() tells the fill
+}
+
+// ---- the pending path: an approximately timed memory behind the L2 ----
+
+void L1Cache::wait_for(uint64_t line, uint32_t slot, uint64_t t) { waiting_[line].push_back({slot, t}); }
+
+void L1Cache::defer_miss(uint64_t line, uint32_t slot, uint64_t t) {
+  deferred_.push_back({line, t});
+  wait_for(line, slot, t);
+}
+
+uint64_t L1Cache::pend_read(uint32_t slot, uint32_t lines, uint64_t ready) {
+  PendingRead& p = pending_[slot - first_slot_];
+  p.lines = lines;
+  p.ready = ready;
+  return kPendingCycle;
+}
+
+void L1Cache::answer(uint32_t slot, uint64_t ready) {
+  PendingRead& p = pending_[slot - first_slot_];
+  if (ready > p.ready) p.ready = ready;
+  if (p.lines == 0 || --p.lines != 0) return;
+  if (p.ready > last_ready_) last_ready_ = p.ready;
+  done->read_done(slot, p.ready);
+}
+
+void L1Cache::line_filled(uint64_t line, uint64_t fill) {
+  level_.resolve(line, fill);
+  if (vcd_) vcd_->add(vcd_misses_, fill, -1);  // the miss's +1 went in when it was sent
+  const auto it = waiting_.find(line);
+  if (it != waiting_.end()) {
+    std::vector<Waiter> waiters = std::move(it->second);
+    waiting_.erase(it);
+    for (const Waiter& w : waiters) {
+      // A request that turned out to arrive at or after the fill is a hit.
+      const bool hit = w.t >= fill;
+      if (hit) level_.recount_merge_as_hit();
+      answer(w.slot, hit ? w.t + level_.hit_latency() : fill);
+    }
+  }
+  send_deferred();
+}
+
+void L1Cache::send_deferred() {
+  while (!deferred_.empty() && level_.mshr_free_cycle() != kPendingCycle) {
+    const DeferredMiss d = deferred_.front();
+    deferred_.pop_front();
+    const uint64_t free = level_.mshr_free_cycle();
+    const uint64_t start = std::max(free, d.t);
+    level_.count_mshr_wait(start - d.t);
+    ++misses_sent_late_;
+    level_.hold_mshr(kPendingCycle);
+    if (vcd_) vcd_->add(vcd_misses_, start, +1);
+    const uint64_t fill = l2_ ? l2_->read_line_inline<0>(d.line, start + level_.hit_latency(), core_)
+                              : next->read_line(d.line, start + level_.hit_latency(), core_);
+    if (fill != kPendingCycle) line_filled(d.line, fill);  // answers its waiters (and sends further deferred misses)
+  }
+}
+
+}  // namespace vbsim::hw

@@ -1,0 +1,119 @@
+// L1Cache: one core's private cache as a SystemC module. The core reads the BVH
+// through it (MemoryReadIf at `target`); its misses go on to the shared L2
+// through `next` (LineReadIf). docs/memory-model.md has the timing rules: a read
+// is split into the lines it spans, each looked up at the read's cycle, and the
+// read's data are ready with its last line; a miss takes the MSHR that frees
+// first, allocates its line at once and holds the MSHR until the fill.
+//
+// Behind an approximately timed DRAM a miss's fill may not be known when it is
+// sent (kPendingCycle): the read is then answered kPendingCycle and the core
+// gets the cycle through `done` (ReadDoneIf) once the L2 calls line_filled().
+// Requests waiting for such a line, and misses waiting for an MSHR whose fill is
+// unknown, are held here until then (the rare path, out of line).
+#pragma once
+#include <cstdint>
+#include <deque>
+#include <unordered_map>
+#include <vector>
+
+#include <systemc>
+
+#include "hw/cache_level.h"
+#include "hw/memory_config.h"
+#include "hw/stat_provider.h"
+#include "hw/unit_interfaces.h"
+#include "hw/vcd_recorder.h"
+
+namespace vbsim::hw {
+
+class L2Cache;
+
+class L1Cache final : public sc_core::sc_module, public MemoryReadIf, public LineFillIf, public StatProvider {
+ public:
+  sc_core::sc_export<MemoryReadIf> target;    ///< the core's reads
+  sc_core::sc_port<LineReadIf> next;          ///< misses, to the L2
+  sc_core::sc_export<LineFillIf> fill_target; ///< the L2's answers to misses answered kPendingCycle
+  sc_core::sc_port<ReadDoneIf> done;          ///< answers to the core's reads answered kPendingCycle
+
+  /// The L1 of core `core`, whose slots are the accelerator-wide ids
+  /// [first_slot, first_slot + slots). `config` is valid (check_memory_config).
+  L1Cache(sc_core::sc_module_name name, const CacheConfig& config, uint32_t core, uint32_t first_slot,
+          uint32_t slots);
+
+  /// Misses go to `l2` by direct calls (the built-in L2, which `next` is bound
+  /// to): the ways of both levels known at compile time for the presets' shapes.
+  void connect_fast(L2Cache* l2);
+
+  uint64_t read(uint64_t addr, uint32_t bytes, uint64_t now, uint32_t slot) override {
+    return read_direct(addr, bytes, now, slot);
+  }
+  /// read() without the virtual call (the scheduler's direct path; one call,
+  /// the line loop and both levels' lookups inlined into it).
+  uint64_t read_direct(uint64_t addr, uint32_t bytes, uint64_t now, uint32_t slot);
+  void line_filled(uint64_t line, uint64_t fill) override;
+
+  /// Asks the host's caches for the tag sets a read of `addr` looks up first
+  /// (its first line in this L1 and in the L2); changes nothing.
+  void prefetch(uint64_t addr) const {
+    const uint64_t line = addr >> line_shift_;
+    level_.tags().prefetch(line);
+    if (l2_tags_) l2_tags_->prefetch(line);
+  }
+
+  const char* unit_kind() const override { return "L1Cache"; }
+  nlohmann::json parameters() const override;
+  LevelCounters counters() const { return level_.counters(); }
+  uint64_t reads() const { return reads_; }
+  uint64_t bytes() const { return bytes_; }
+  /// The cycle of the first read and the latest ready cycle of any read (0 without reads).
+  uint64_t first_read_cycle() const { return first_now_; }
+  uint64_t last_ready_cycle() const { return last_ready_; }
+  /// Its misses in flight are recorded (VCD).
+  void set_tracing(VcdRecorder* vcd);
+
+ private:
+  enum class Shape { Any, L1x4L2x8, L1x4L2x16 };
+  template <uint32_t L1Ways, uint32_t L2Ways>
+  uint64_t read_shaped(uint64_t addr, uint32_t bytes, uint64_t now, uint32_t slot);
+  template <uint32_t L1Ways, uint32_t L2Ways>
+  uint64_t read_line(uint64_t line, uint64_t now, uint32_t slot);
+  template <uint32_t L2Ways>
+  uint64_t next_level(uint64_t line, uint64_t t);
+
+  // The pending path (approximately timed memory only).
+  void wait_for(uint64_t line, uint32_t slot, uint64_t t);
+  void defer_miss(uint64_t line, uint32_t slot, uint64_t t);
+  uint64_t pend_read(uint32_t slot, uint32_t lines, uint64_t ready);
+  void answer(uint32_t slot, uint64_t ready);
+  void send_deferred();
+  void trace_miss(uint64_t start, uint64_t fill);
+
+  CacheLevel level_;
+  CacheConfig config_;
+  uint32_t core_, first_slot_, line_shift_;
+  Shape shape_ = Shape::Any;
+  L2Cache* l2_ = nullptr;  // the built-in L2 when connect_fast() was called
+  const LruCache* l2_tags_ = nullptr;  // its tag array (for prefetch)
+  uint64_t reads_ = 0, bytes_ = 0, first_now_ = 0, last_ready_ = 0;
+  uint64_t misses_sent_late_ = 0;  ///< misses that waited for an MSHR whose fill was unknown
+
+  struct Waiter {
+    uint32_t slot;
+    uint64_t t;  ///< the request's cycle
+  };
+  struct PendingRead {
+    uint32_t lines = 0;  ///< lines still unknown
+    uint64_t ready = 0;  ///< the latest known line's ready cycle
+  };
+  struct DeferredMiss {
+    uint64_t line, t;
+  };
+  std::unordered_map<uint64_t, std::vector<Waiter>> waiting_;  // by line
+  std::vector<PendingRead> pending_;                           // by slot - first_slot_
+  std::deque<DeferredMiss> deferred_;
+  // Tracing (VCD of the misses in flight; null: none).
+  VcdRecorder* vcd_ = nullptr;
+  uint32_t vcd_misses_ = VcdRecorder::kNoSignal;
+};
+
+}  // namespace vbsim::hw

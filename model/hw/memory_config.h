@@ -1,0 +1,44 @@
+// The memory system's configuration: a private L1 per core, a shared L2 and a
+// DRAM target behind a TLM-2.0 socket (docs/memory-model.md), or an ideal memory.
+#pragma once
+#include <cstdint>
+
+namespace vbsim::hw {
+
+/// One cache level. Sizes in bytes; latencies in core clock cycles.
+struct CacheConfig {
+  uint32_t size_bytes = 0;
+  uint32_t ways = 0;
+  uint32_t line_bytes = 64;
+  uint32_t hit_latency = 0;  ///< cycles from request to data on a hit
+  uint32_t mshrs = 0;        ///< misses in flight at once (outstanding-miss limit)
+};
+
+/// How the L2's misses cross the TLM-2.0 socket to the DRAM target.
+enum class TlmStyle {
+  LooselyTimed,        ///< b_transport with delay annotation (exact with the built-in DRAM)
+  ApproximatelyTimed,  ///< nb_transport_fw/bw, base protocol phases, responses when the target sends them
+};
+const char* tlm_style_name(TlmStyle s);  ///< "lt" / "at"
+
+/// The memory system of the accelerator: a private L1 per core, a shared L2, DRAM.
+struct MemoryConfig {
+  bool ideal = false;          ///< every read takes ideal_latency cycles, no caches
+  uint32_t ideal_latency = 1;  ///< cycles per read of the ideal memory
+  CacheConfig l1{16 * 1024, 4, 64, 2, 8};
+  CacheConfig l2{1024 * 1024, 8, 64, 14, 32};
+  uint32_t dram_latency = 120;        ///< cycles from an L2 miss to its line arriving (unloaded)
+  double dram_bytes_per_cycle = 16;   ///< DRAM bandwidth in bytes per core clock cycle
+  uint32_t dram_max_outstanding = 32; ///< DRAM requests in flight at once
+  TlmStyle tlm = TlmStyle::LooselyTimed;
+  /// Approximately timed: the target's promise that no response comes sooner
+  /// than this many cycles after its request, so the scheduler may handle
+  /// events up to that far ahead of the oldest request in flight (1: lock-step).
+  uint32_t at_lookahead_cycles = 1;
+};
+
+/// Throws std::invalid_argument naming the field ("memory.l1.ways: ...") when
+/// `config` cannot describe a hierarchy for `cores` cores. Ideal memories pass.
+void check_memory_config(const MemoryConfig& config, int cores);
+
+}  // namespace vbsim::hw

@@ -1,0 +1,300 @@
+#include "hw/ray_source.h"
+
+#include <algorithm>
+#include <cstring>
+#include <sstream>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+namespace vbsim::hw {
+
+namespace {
+
+/// Emission-time method operations acting on `tr` (each costs emission_op_cycles).
+uint32_t emission_ops(const SelfIntersectionMethod& m, const TraceRay& tr) {
+  const bool child = tr.parent_prim >= 0, shadow = tr.kind == RayKind::Shadow;
+  uint32_t ops = m.tmin;
+  if (child) ops += m.offset_normal + m.offset_direction + m.offset_adaptive + m.offset_errbound;
+  if (shadow && child) ops += m.shading_position || m.shading_position_always;
+  if (shadow) ops += m.reverse_shadow;
+  return ops;
+}
+
+bool same_origin(const TraceRay& a, const TraceRay& b) { return std::memcmp(&a.o, &b.o, sizeof a.o) == 0; }
+
+}  // namespace
+
+RaySource::RaySource(sc_core::sc_module_name name, const HwConfig& config, FunctionalReplayer& replayer)
+    : sc_core::sc_module(name), config_(config.source), latency_(config.shader.latency_cycles), replayer_(replayer),
+      lanes_count_(std::max<uint32_t>(1, config.source.rays_per_cycle)),
+      window_(std::max<uint32_t>(1, config.source.window)), capacity_(2 * window_), lanes_(lanes_count_) {
+  ring_.reserve(std::min<uint32_t>(capacity_, 4096));
+  const SourceCounters& c = counters_;
+  const EmissionCounters& e = emission_;
+  declare_stat("rays", "rays", "rays read from the trace and emitted", c.rays);
+  declare_stat("busy_cycles", "lane-cycles",
+               "cycles the lanes spent emitting (issue interval, sign bits, emission operations, bundle calls)",
+               c.busy_cycles);
+  declare_stat("sign_bits_computed", "rays", "child rays whose parent sign bit the source computed",
+               c.sign_bits_computed);
+  declare_stat("emission_ops", "operations", "emission-time method operations (offsets, tmin, ...)",
+               c.emission_ops);
+  declare_stat("no_free_slot_cycles", "lane-cycles", "cycles emitted rays waited because every slot was busy",
+               c.no_free_slot_cycles);
+  declare_stat("children_waited", "rays", "rays that entered the buffer before their parent's result",
+               e.children_waited);
+  declare_stat("dependency_wait_cycles", "ray-cycles",
+               "cycles from entering the buffer to ready, summed over the rays that waited for a parent",
+               e.dependency_wait_cycles);
+  declare_stat("parents_not_found", "rays",
+               "child rays whose parent is not in the trace or lies a window behind (taken as ready)",
+               e.parents_not_found);
+  declare_stat("lane_idle_dependency_cycles", "lane-cycles",
+               "cycles a lane had nothing ready while buffered rays waited for their parents",
+               e.lane_idle_dependency_cycles);
+  declare_stat("lane_idle_window_cycles", "lane-cycles",
+               "cycles a lane had nothing ready because the window was full of unfinished rays",
+               e.lane_idle_window_cycles);
+  declare_stat("bundles", "calls", "bundle calls of the emission API", e.bundles);
+  declare_stat("bundled_rays", "rays", "rays emitted by bundle calls", e.bundled_rays);
+}
+
+nlohmann::json RaySource::parameters() const {
+  return {{"rays_per_cycle", lanes_count_},
+          {"window", window_},
+          {"dependencies", config_.dependencies},
+          {"shading_latency_cycles", latency_},
+          {"issue_interval", config_.issue_interval},
+          {"sign_bit_cycles", config_.sign_bit_cycles},
+          {"emission_op_cycles", config_.emission_op_cycles},
+          {"bundles", config_.bundles},
+          {"method", replayer_.options().method.name()}};
+}
+
+uint64_t RaySource::emission_cycles(const TraceRay& tr) {
+  uint64_t cost = config_.issue_interval;
+  if (tr.sign < 0 && tr.parent_prim >= 0) {
+    cost += config_.sign_bit_cycles;
+    ++counters_.sign_bits_computed;
+  }
+  const uint32_t ops = emission_ops(replayer_.options().method, tr);
+  counters_.emission_ops += ops;
+  cost += uint64_t{ops} * config_.emission_op_cycles;
+  return cost;
+}
+
+void RaySource::start(SourceHost& host, uint64_t at) {
+  host_ = &host;
+  for (Lane& l : lanes_) l.idle_since = at;
+  fill(at);
+  start_idle_lanes(at);
+}
+
+void RaySource::fill(uint64_t now) {
+  while (!ended_ && next_ < base_ + window_) {
+    if (ring_.size() < capacity_ && next_ == ring_.size()) ring_.emplace_back();  // grows to its capacity as rays come
+    Entry& e = at_pos(next_);
+    if (next_ >= capacity_) {  // the place's previous ray left the history: forget its id
+      const auto it = position_of_.find(e.ray.tr.id);
+      if (it != position_of_.end() && it->second == next_ - capacity_) position_of_.erase(it);
+    }
+    if (!feed_ || !feed_(e.ray.tr)) {
+      ended_ = true;
+      break;
+    }
+    enter(next_, now);
+    ++next_;
+  }
+}
+
+void RaySource::enter(uint64_t pos, uint64_t now) {
+  Entry& e = at_pos(pos);
+  const TraceRay& tr = e.ray.tr;
+  e.ray.index = pos;
+  e.ray.er = replayer_.emit(tr);  // in trace order: a parent before its children
+  e.entered = now;
+  e.first_child = e.next_sibling = kNone;
+  e.state = State::Ready;
+  ++counters_.rays;
+  const uint64_t history = base_ > window_ ? base_ - window_ : 0;  // the oldest position still known
+  uint64_t ready = now;
+  bool waits = false;
+  if (config_.dependencies) {
+    const auto child = unresolved_.find(tr.id);
+    if (child != unresolved_.end() && child->second >= history) {
+      const std::string what = fmt::format(
+          "ray {} is the parent of ray {} (trace position {}), which comes before it: a trace replayed with "
+          "dependencies lists every parent before its children (--deps off replays it as independent rays)",
+          tr.id, at_pos(child->second).ray.tr.id, child->second);
+      throw std::runtime_error(locate_ ? locate_("id", what) : fmt::format("trace position {}: {}", pos, what));
+    }
+    if (tr.parent >= 0) {
+      const auto it = position_of_.find(tr.parent);
+      if (it == position_of_.end() || it->second < history) {
+        ++emission_.parents_not_found;
+        if (unresolved_.size() > 4 * size_t{window_})  // forget the children too far behind to matter
+          for (auto u = unresolved_.begin(); u != unresolved_.end();)
+            u = u->second < history ? unresolved_.erase(u) : std::next(u);
+        unresolved_.emplace(tr.parent, pos);
+      } else {
+        Entry& parent = at_pos(it->second);
+        if (parent.state != State::Finished || parent.finish + latency_ > now) {
+          // Ready with the parent's other children, when its result has been shaded.
+          waits = true;
+          e.state = State::Waiting;
+          ++waiting_count_;
+          e.next_sibling = parent.first_child;
+          parent.first_child = static_cast<uint32_t>(pos % capacity_);
+          ++emission_.children_waited;
+          if (parent.state == State::Finished && !parent.event_pending) {
+            parent.event_pending = true;
+            host_->schedule_source_event(lanes_count_ + static_cast<uint32_t>(it->second % capacity_),
+                                         parent.finish + latency_);
+          }
+        }
+      }
+    }
+  }
+  position_of_[tr.id] = pos;
+  if (!waits) make_ready(pos, ready);
+}
+
+void RaySource::make_ready(uint64_t pos, uint64_t cycle) {
+  Entry& e = at_pos(pos);
+  if (e.state == State::Waiting) --waiting_count_;
+  e.state = State::Ready;
+  e.ray.ready = cycle;
+  emission_.dependency_wait_cycles += cycle - e.entered;
+  ready_.push(pos);
+}
+
+void RaySource::on_event(uint32_t id, uint64_t at) {
+  if (id < lanes_count_) {  // a lane's emission is done
+    Lane& lane = lanes_[id];
+    lane.emitting = false;
+    for (uint32_t k = 0; k < lane.count; ++k) at_pos(lane.first + k).state = State::Held;
+    if (send(id, at)) {
+      try_start(id, at);
+    } else {
+      lane.held_since = at;
+      held_.push_back(id);
+    }
+    return;
+  }
+  // The children of the ray at this place are ready: its result has been shaded.
+  Entry& parent = ring_[id - lanes_count_];
+  parent.event_pending = false;
+  for (uint32_t c = parent.first_child; c != kNone;) {
+    Entry& child = ring_[c];
+    c = child.next_sibling;
+    make_ready(child.ray.index, at);
+  }
+  parent.first_child = kNone;
+  start_idle_lanes(at);
+}
+
+void RaySource::on_finish(uint64_t index, uint64_t at) {
+  Entry& e = at_pos(index);
+  e.state = State::Finished;
+  e.finish = at;
+  if (e.first_child != kNone && !e.event_pending) {
+    e.event_pending = true;
+    host_->schedule_source_event(lanes_count_ + static_cast<uint32_t>(index % capacity_), at + latency_);
+  }
+  const uint64_t old_base = base_;
+  while (base_ < next_ && at_pos(base_).state == State::Finished) ++base_;
+  if (base_ != old_base) {
+    fill(at);
+    start_idle_lanes(at);
+  }
+}
+
+void RaySource::on_slot_free(uint64_t at) {
+  while (!held_.empty()) {
+    const uint32_t lane = held_.front();
+    if (!send(lane, at)) return;
+    held_.pop_front();
+    counters_.no_free_slot_cycles += at - lanes_[lane].held_since;
+    try_start(lane, at);
+  }
+}
+
+bool RaySource::send(uint32_t lane_id, uint64_t now) {
+  Lane& lane = lanes_[lane_id];
+  while (lane.sent < lane.count) {
+    Entry& e = at_pos(lane.first + lane.sent);
+    if (!host_->try_dispatch(e.ray, now)) return false;
+    e.state = State::InFlight;
+    ++lane.sent;
+  }
+  return true;
+}
+
+void RaySource::start_idle_lanes(uint64_t now) {
+  for (uint32_t l = 0; l < lanes_count_ && !ready_.empty(); ++l) {
+    Lane& lane = lanes_[l];
+    if (lane.emitting || lane.sent < lane.count) continue;  // busy or holding
+    try_start(l, now);
+  }
+}
+
+void RaySource::try_start(uint32_t lane_id, uint64_t now) {
+  Lane& lane = lanes_[lane_id];
+  if (ready_.empty()) return go_idle(lane_id, now);
+  if (lane.idle == Idle::Dependency) emission_.lane_idle_dependency_cycles += now - lane.idle_since;
+  if (lane.idle == Idle::Window) emission_.lane_idle_window_cycles += now - lane.idle_since;
+  lane.idle = Idle::None;
+  const uint64_t first = ready_.top();
+  ready_.pop();
+  const TraceRay& head = at_pos(first).ray.tr;
+  uint64_t cost = emission_cycles(head);
+  uint32_t count = 1;
+  if (config_.bundles) {
+    while (count < config_.bundle_max && !ready_.empty() && ready_.top() == first + count) {
+      const TraceRay& next = at_pos(first + count).ray.tr;
+      if (next.parent < 0 || next.parent != head.parent || !same_origin(next, head)) break;
+      ready_.pop();
+      cost += emission_cycles(next);
+      ++count;
+    }
+    if (count > 1) {
+      cost += config_.bundle_cycles;
+      ++emission_.bundles;
+      emission_.bundled_rays += count;
+    }
+  }
+  for (uint32_t k = 0; k < count; ++k) {
+    Entry& e = at_pos(first + k);
+    e.state = State::Emitting;
+    e.ray.emitted = now;
+  }
+  counters_.busy_cycles += cost;
+  lane.emitting = true;
+  lane.first = first;
+  lane.count = count;
+  lane.sent = 0;
+  host_->schedule_source_event(lane_id, now + cost);
+}
+
+void RaySource::go_idle(uint32_t lane_id, uint64_t now) {
+  Lane& lane = lanes_[lane_id];
+  lane.count = lane.sent = 0;
+  lane.idle = waiting_count_ ? Idle::Dependency : ended_ ? Idle::End : Idle::Window;
+  lane.idle_since = now;
+}
+
+std::string RaySource::buffer_report() const {
+  std::ostringstream out;
+  size_t waiting = 0, ready = 0;
+  for (uint64_t p = base_; p < next_; ++p) {
+    waiting += at_pos(p).state == State::Waiting;
+    ready += at_pos(p).state == State::Ready;
+  }
+  out << "  ray source: " << next_ - base_ << " rays in the buffer from trace position " << base_ << " (" << waiting
+      << " waiting for a parent, " << ready << " ready), " << held_.size() << " lanes holding a ray, trace "
+      << (ended_ ? "ended" : "not ended") << "\n";
+  return out.str();
+}
+
+}  // namespace vbsim::hw

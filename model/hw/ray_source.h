@@ -1,0 +1,161 @@
+// RaySource: the patent's ray-emission interface (FIG. 12) in front of the
+// dispatcher, with its ray-emission buffer.
+//
+// Buffer. The source reads trace rays in order into a buffer that looks ahead
+// at most `source.window` rays beyond the oldest unfinished one, and runs each
+// through the datapath's emission step as it enters (FunctionalReplayer::emit:
+// the origin, emission-time methods, the parent sign bit when the trace lacks
+// it; in trace order, so parents are emitted before their children).
+//
+// Dependencies (`source.dependencies`, default on). A ray whose `parent` is in
+// the trace is ready `shader.latency_cycles` after its parent's result reached
+// the result sink (the shader that emits it has seen the hit); a ray without a
+// parent, or whose parent the source cannot find (not in the trace, or more
+// than a window behind the oldest unfinished ray), is ready when it enters the
+// buffer. A parent that turns up after its child is an error naming the
+// parent's line. Off: every ray ready at once, as a trace of unrelated queries.
+//
+// Emission. `source.rays_per_cycle` lanes each take the ready ray earliest in
+// trace order (a waiting child does not hold back the ready rays behind it) and
+// are busy for its emission cycles:
+//   single-ray call:  issue_interval
+//   bundle call of n: bundle_cycles + n x issue_interval   (`source.bundles`:
+//                     consecutive ready rays of one parent with the same origin,
+//                     at most bundle_max; the patent's "emit a bundle of rays")
+//   + sign_bit_cycles per ray whose sign bit the source computes
+//   + emission_op_cycles per emission-time method operation acting on a ray.
+// An emitted ray goes to the dispatcher; while every slot is busy its lane holds
+// it (the oldest held lane gets the next free slot).
+#pragma once
+#include <cstdint>
+#include <deque>
+#include <functional>
+#include <queue>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include <systemc>
+
+#include "hw/hw_config.h"
+#include "hw/hw_counters.h"
+#include "hw/ray_feed.h"
+#include "hw/stat_provider.h"
+#include "replay/functional_replayer.h"
+
+namespace vbsim::hw {
+
+/// One buffered ray as the source hands it to the dispatcher.
+struct SourceRay {
+  TraceRay tr;
+  EmittedRay er;
+  uint64_t index = 0;   ///< position in the trace (0 for the first ray)
+  uint64_t ready = 0;   ///< cycle it became ready for emission
+  uint64_t emitted = 0; ///< cycle its emission started
+};
+
+/// What the source needs from the scheduler.
+class SourceHost {
+ public:
+  virtual ~SourceHost() = default;
+  /// The source's event `id` (0 <= id < RaySource::event_ids()) fires at `cycle`.
+  virtual void schedule_source_event(uint32_t id, uint64_t cycle) = 0;
+  /// Puts `ray` in a free slot at `at`; false when every slot is busy.
+  virtual bool try_dispatch(const SourceRay& ray, uint64_t at) = 0;
+};
+
+/// What the source counted beyond SourceCounters.
+struct EmissionCounters {
+  uint64_t children_waited = 0;          ///< rays that entered the buffer before their parent's result
+  uint64_t dependency_wait_cycles = 0;   ///< summed over rays: cycles from entering the buffer to ready
+  uint64_t parents_not_found = 0;        ///< child rays whose parent the source could not find
+  uint64_t lane_idle_dependency_cycles = 0;  ///< lane-cycles idle while buffered rays waited for parents
+  uint64_t lane_idle_window_cycles = 0;  ///< lane-cycles idle with the buffer's window full of unfinished rays
+  uint64_t bundles = 0, bundled_rays = 0;  ///< bundle calls and the rays they emitted
+};
+
+class RaySource final : public sc_core::sc_module, public StatProvider {
+ public:
+  /// `replayer` outlives the source.
+  RaySource(sc_core::sc_module_name name, const HwConfig& config, FunctionalReplayer& replayer);
+
+  /// The trace to emit, and how to name a ray's line in an error (both before the simulation starts).
+  void set_feed(RayFeed feed) { feed_ = std::move(feed); }
+  void set_locator(RayLocator locate) { locate_ = std::move(locate); }
+
+  // ---- the scheduler's side ----
+  /// Events of the source: one per lane, one per buffer place.
+  uint32_t event_ids() const { return lanes_count_ + capacity_; }
+  void start(SourceHost& host, uint64_t at);
+  void on_event(uint32_t id, uint64_t at);
+  /// The ray at trace position `index` finished at `at`.
+  void on_finish(uint64_t index, uint64_t at);
+  /// A slot became free at `at`: held rays go first, then idle lanes start.
+  void on_slot_free(uint64_t at);
+  /// The trace has ended and every ray read has finished.
+  bool all_done() const { return ended_ && base_ == next_; }
+  uint64_t rays_read() const { return next_; }
+  bool holding() const { return !held_.empty(); }
+  /// Rays in the buffer not yet emitted, for a report of a stuck run.
+  std::string buffer_report() const;
+
+  const SourceCounters& counters() const { return counters_; }
+  const EmissionCounters& emission() const { return emission_; }
+  const char* unit_kind() const override { return "RaySource"; }
+  nlohmann::json parameters() const override;
+
+ private:
+  enum class State : uint8_t { Waiting, Ready, Emitting, Held, InFlight, Finished };
+  static constexpr uint32_t kNone = ~uint32_t{0};
+  struct Entry {
+    SourceRay ray;
+    State state = State::Finished;
+    uint64_t entered = 0, finish = 0;
+    uint32_t first_child = kNone, next_sibling = kNone;  ///< ring places of children waiting for this ray
+    bool event_pending = false;  ///< the event making its children ready is scheduled
+  };
+  enum class Idle : uint8_t { None, Dependency, Window, End };
+  struct Lane {
+    bool emitting = false;
+    uint64_t first = 0;   ///< trace position of its first ray
+    uint32_t count = 0;   ///< rays it emits (more than one: a bundle)
+    uint32_t sent = 0;    ///< of which dispatched
+    Idle idle = Idle::End;
+    uint64_t idle_since = 0, held_since = 0;
+  };
+
+  Entry& at_pos(uint64_t pos) { return ring_[pos % capacity_]; }
+  const Entry& at_pos(uint64_t pos) const { return ring_[pos % capacity_]; }
+  void fill(uint64_t now);
+  void enter(uint64_t pos, uint64_t now);
+  void make_ready(uint64_t pos, uint64_t cycle);
+  void try_start(uint32_t lane, uint64_t now);
+  void go_idle(uint32_t lane, uint64_t now);
+  void start_idle_lanes(uint64_t now);
+  /// Sends the lane's emitted rays to free slots; true when all went.
+  bool send(uint32_t lane, uint64_t now);
+  /// One ray's emission cycles (counted: sign bits, emission operations).
+  uint64_t emission_cycles(const TraceRay& tr);
+
+  SourceConfig config_;
+  uint32_t latency_;
+  FunctionalReplayer& replayer_;
+  RayFeed feed_;
+  RayLocator locate_;
+  SourceHost* host_ = nullptr;
+  uint32_t lanes_count_, window_, capacity_;  // capacity: window plus as many finished rays behind it
+  std::vector<Entry> ring_;  // position p at p % capacity_; grown as positions arrive, up to capacity_
+  std::vector<Lane> lanes_;
+  uint64_t base_ = 0;  ///< the oldest unfinished position
+  uint64_t next_ = 0;  ///< the next position to read
+  bool ended_ = false;
+  uint64_t waiting_count_ = 0;  ///< buffered rays waiting for a parent
+  std::unordered_map<int64_t, uint64_t> position_of_;  ///< id -> position, for [base - window, next)
+  std::unordered_map<int64_t, uint64_t> unresolved_;   ///< parent id not found -> its child's position
+  std::priority_queue<uint64_t, std::vector<uint64_t>, std::greater<uint64_t>> ready_;  ///< ready positions
+  std::deque<uint32_t> held_;  ///< lanes holding an emitted ray for want of a slot, oldest first
+  SourceCounters counters_;
+  EmissionCounters emission_;
+};
+
+}  // namespace vbsim::hw

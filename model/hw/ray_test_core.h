@@ -1,0 +1,72 @@
+// RayTestCore: one of the patent's ray-test cores (FIG. 12), as a SystemC
+// module holding its units: the box unit, the triangle tester (front/back bit),
+// the intersection-avoidance unit and its L1 cache (or none: an ideal memory is
+// bound to its memory port). It reaches them through its ports `box`,
+// `triangle`, `avoidance` and `memory`, so another module can be bound instead
+// (AcceleratorUnits). Its ray slots are the accelerator-wide slot ids
+// [first_slot(), first_slot() + slots()); each slot holds one ray record (the
+// datapath's Ray with its parent sign bit) and its BvhStepper, kept with the
+// other cores' slots in one array by the scheduler for the host's caches.
+#pragma once
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include <systemc>
+
+#include "hw/accelerator_units.h"
+#include "hw/hw_counters.h"
+#include "hw/l1_cache.h"
+#include "hw/pipeline_units.h"
+#include "hw/stat_provider.h"
+#include "hw/unit_interfaces.h"
+
+namespace vbsim::hw {
+
+class RayTestCore final : public sc_core::sc_module, public ReadDoneIf, public StatProvider {
+ public:
+  sc_core::sc_port<PipelineIf> box, triangle, avoidance;
+  sc_core::sc_port<MemoryReadIf> memory;
+  sc_core::sc_export<ReadDoneIf> read_done_target;  ///< where a pending read's answer arrives
+
+  /// Core `index` of `config`; its units are built-in unless `units` replaces
+  /// them; `with_l1`: builds its L1 (false: the accelerator binds `memory`).
+  RayTestCore(sc_core::sc_module_name name, uint32_t index, const HwConfig& config, const AcceleratorUnits& units,
+              TesterKind tester, const AvoidanceConfig& avoidance_config, bool avoidance_in_use, bool with_l1);
+
+  uint32_t index() const { return index_; }
+  uint32_t first_slot() const { return first_slot_; }
+  uint32_t slots() const { return slots_; }
+
+  /// The built-in units bound to the ports, or null where a replacement is bound.
+  PipelineUnit* builtin_box() const { return builtin_box_; }
+  PipelineUnit* builtin_triangle() const { return builtin_triangle_; }
+  AvoidanceUnit* builtin_avoidance() const { return builtin_avoidance_; }
+  L1Cache* l1() const { return l1_; }  ///< the built-in L1, or null
+
+  /// Pending reads' answers go to `resume(slot, ready)` (the scheduler).
+  void set_resume(std::function<void(uint32_t, uint64_t)> resume) { resume_ = std::move(resume); }
+  void read_done(uint32_t slot, uint64_t ready) override { resume_(slot, ready); }
+
+  CoreCounters counters;             ///< counted by the scheduler as it runs this core's slots
+  std::vector<uint32_t> free_slots;  ///< accelerator-wide ids of the free slots (the last is taken next)
+
+  const char* unit_kind() const override { return "RayTestCore"; }
+  nlohmann::json parameters() const override;
+
+ private:
+  uint32_t index_, first_slot_, slots_, stack_depth_;
+  std::vector<std::unique_ptr<sc_core::sc_module>> replacements_;
+  PipelineUnit* builtin_box_ = nullptr;
+  PipelineUnit* builtin_triangle_ = nullptr;
+  AvoidanceUnit* builtin_avoidance_ = nullptr;
+  L1Cache* l1_ = nullptr;
+  std::unique_ptr<BoxUnit> box_unit_;
+  std::unique_ptr<TriangleTester> triangle_tester_;
+  std::unique_ptr<AvoidanceUnit> avoidance_unit_;
+  std::unique_ptr<L1Cache> l1_cache_;
+  std::function<void(uint32_t, uint64_t)> resume_;
+};
+
+}  // namespace vbsim::hw

@@ -1,0 +1,52 @@
+// VcdRecorder: integer values of module instances (busy slots of a core,
+// operations in flight in its units, outstanding L1 misses, rays done) at cycle
+// resolution over a window of cycles, written as a VCD file for GTKWave.
+//
+// The model reserves work ahead of the cycle it handles (an operation is
+// scheduled when the step that needs it is handled), so a value is recorded as
+// changes (+k at the cycle it takes effect), in any order of cycles; write()
+// sorts them. Changes before the window form each value's starting level; those
+// after the window are dropped. Signals are named by hierarchical instance name;
+// a scope prefix keeps only the instances below it ("accelerator.core_3").
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace vbsim::hw {
+
+class VcdRecorder {
+ public:
+  static constexpr uint32_t kNoSignal = ~uint32_t{0};
+
+  /// Records [first, first + cycles); `period_ps` is one cycle in the file's
+  /// 1 ps time unit; `scope` (may be empty) a prefix of the instance names kept.
+  VcdRecorder(uint64_t first, uint64_t cycles, uint64_t period_ps, std::string scope);
+
+  /// A signal `name` of instance `instance`: its id, or kNoSignal when the
+  /// instance is outside the scope (add() then does nothing).
+  uint32_t signal(const std::string& instance, const std::string& name);
+  /// The value of `id` changes by `delta` at `cycle`.
+  void add(uint32_t id, uint64_t cycle, int64_t delta) {
+    if (id == kNoSignal || cycle >= end_) return;
+    if (cycle < first_) base_[id] += delta;
+    else changes_.push_back({cycle, id, delta});
+  }
+  /// Writes the VCD; throws std::runtime_error when the file cannot be written.
+  void write(const std::string& path) const;
+  size_t signals() const { return names_.size(); }
+
+ private:
+  struct Change {
+    uint64_t cycle;
+    uint32_t id;
+    int64_t delta;
+  };
+  uint64_t first_, end_, period_ps_;
+  std::string scope_;
+  std::vector<std::string> instances_, names_;
+  std::vector<int64_t> base_;
+  std::vector<Change> changes_;
+};
+
+}  // namespace vbsim::hw

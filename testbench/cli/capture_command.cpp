@@ -1,0 +1,71 @@
+// vbsim capture: runs an unmodified Embree 3 application under the capture
+// shim and writes its rays and scene as a trace directory (docs/capture.md).
+#include <fmt/format.h>
+
+#include <filesystem>
+
+#include "capture/application_launch.h"
+#include "capture/capture_merge.h"
+#include "commands.h"
+
+namespace vbsim::cli {
+
+namespace {
+
+struct CaptureArgs {
+  std::string out;
+  std::vector<std::string> command;
+  bool binary = false, keep_raw = false, strip_offsets = false;
+  capture::LinkRules rules;
+};
+
+void run_capture(const CaptureArgs& a) {
+  namespace fs = std::filesystem;
+  const fs::path raw = fs::path(a.out) / "raw";
+  fs::remove_all(raw);  // the shim's files of an earlier run must not mix with this one's
+  fs::create_directories(raw);
+  const std::string shim = capture::capture_shim_path();
+  const capture::LaunchResult run = capture::run_under_shim(a.command, shim, fs::absolute(raw).string());
+  if (!run.exited_normally())
+    throw std::runtime_error(fmt::format("{} {}: no trace written (the shim's files are in {})", a.command[0],
+                                         run.describe(), raw.string()));
+  capture::MergeOptions opt;
+  opt.rules = a.rules;
+  opt.binary = a.binary;
+  opt.strip_offsets = a.strip_offsets;
+  opt.command = a.command;
+  const capture::MergeResult merged = capture::merge_capture(raw.string(), a.out, opt);
+  if (!a.keep_raw) fs::remove_all(raw);
+  fmt::print("{}", merged.summary);
+  fmt::print("  next: vbsim oracle {} -o scored{}, then vbsim replay or vbsim score\n", merged.trace_path,
+             a.binary ? ".vbt" : ".jsonl");
+}
+
+}  // namespace
+
+void add_capture_command(CLI::App& app) {
+  auto args = std::make_shared<CaptureArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "capture", "run an Embree 3 application under a preloaded shim and write its rays and scene as a trace");
+  cmd->add_option("-o,--out", args->out, "output directory (trace, scene.ply, embree_hits.jsonl, capture.json)")
+      ->required();
+  cmd->add_flag("--binary", args->binary, "write trace.vbt instead of trace.jsonl");
+  cmd->add_option("--link-ulps", args->rules.ulps,
+                  "a child's origin may differ from its parent's hit point by this many ulps per axis")
+      ->check(CLI::Range(0, 1 << 20))
+      ->capture_default_str();
+  cmd->add_option("--link-offset", args->rules.normal_offset,
+                  "largest origin offset along the hit's normal, as a fraction of the hit point's size (0: none)")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
+  cmd->add_option("--link-history", args->rules.history, "recent hits of a thread searched for a parent")
+      ->check(CLI::Range(std::size_t{1}, std::size_t{1} << 16))
+      ->capture_default_str();
+  cmd->add_flag("--strip-offsets", args->strip_offsets,
+                "children start at their parent's hit point with tmin 0 (the application's own offsets removed)");
+  cmd->add_flag("--keep-raw", args->keep_raw, "keep the shim's raw files in OUT/raw");
+  cmd->add_option("command", args->command, "the application and its arguments, after `--`")->required();
+  cmd->callback([args] { run_capture(*args); });
+}
+
+}  // namespace vbsim::cli

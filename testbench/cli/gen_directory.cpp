@@ -1,0 +1,68 @@
+#include "gen_directory.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <set>
+
+namespace vbsim::cli {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+/// The file names an earlier gen listed (empty without a readable list).
+std::set<std::string> owned_files(const fs::path& dir) {
+  std::set<std::string> owned;
+  std::ifstream in(dir / kGenManifestName);
+  if (!in) return owned;
+  const nlohmann::json j = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
+  if (j.is_object() && j.contains("files") && j["files"].is_array())
+    for (const auto& f : j["files"])
+      if (f.is_string() && fs::path(f.get<std::string>()).filename() == f.get<std::string>())
+        owned.insert(f.get<std::string>());  // plain names only: never a path out of `dir`
+  return owned;
+}
+
+bool is_trace_name(const fs::path& p) { return p.extension() == ".jsonl" || p.extension() == ".vbt"; }
+
+}  // namespace
+
+void prepare_gen_directory(const std::string& dir_text) {
+  const fs::path dir(dir_text);
+  if (!fs::exists(dir)) return;
+  if (!fs::is_directory(dir)) throw std::runtime_error(fmt::format("{}: exists and is not a directory", dir_text));
+  const std::set<std::string> owned = owned_files(dir);
+  std::vector<std::string> foreign;
+  for (const auto& e : fs::directory_iterator(dir)) {
+    const std::string name = e.path().filename().string();
+    if (is_trace_name(e.path()) && !owned.count(name)) foreign.push_back(name);
+  }
+  if (!foreign.empty()) {
+    std::sort(foreign.begin(), foreign.end());
+    std::string list;
+    for (size_t i = 0; i < foreign.size() && i < 5; ++i) list += (i ? ", " : "") + foreign[i];
+    if (foreign.size() > 5) list += fmt::format(" and {} more", foreign.size() - 5);
+    throw std::runtime_error(fmt::format(
+        "{}: holds trace files that vbsim gen did not write ({}); `vbsim score` would include them. "
+        "Remove them or choose another directory",
+        dir_text, list));
+  }
+  for (const std::string& name : owned) fs::remove(dir / name);
+  fs::remove(dir / kGenManifestName);
+}
+
+void write_gen_manifest(const std::string& dir, const std::vector<std::string>& files, bool complete,
+                        const nlohmann::json& provenance) {
+  nlohmann::json names = nlohmann::json::array();
+  for (const std::string& f : files) names.push_back(fs::path(f).filename().string());
+  const fs::path path = fs::path(dir) / kGenManifestName;
+  std::ofstream out(path);
+  const nlohmann::json j = {{"complete", complete}, {"files", names}, {"provenance", provenance}};
+  if (!out || !(out << j.dump(1) << "\n") || !out.flush())
+    throw std::runtime_error(fmt::format("{}: cannot write gen's file list", path.string()));
+}
+
+}  // namespace vbsim::cli

@@ -1,0 +1,63 @@
+// vbsim hw: the cycle-level model's elaborated module hierarchy (every
+// instance with its class, parameters and port bindings) and the statistics
+// each kind of module declares, for a preset or a configuration file.
+#include <fmt/format.h>
+
+#include <fstream>
+#include <memory>
+
+#include "commands.h"
+#include "hw/accelerator.h"
+#include "hw/hierarchy_report.h"
+#include "hw/simulation_context.h"
+#include "method_options.h"
+
+namespace vbsim::cli {
+
+namespace {
+
+struct HwArgs {
+  bool hierarchy = false, statistics = false;
+  std::string preset, json;
+  MethodOptions method;
+};
+
+void run_hw(const HwArgs& a) {
+  const ReplayOptions opt = resolve_method_options(a.method);
+  const hw::HwConfig cfg = hw::resolve_hw_config(a.method.config, a.preset);
+  const hw::SimulationContext context;
+  const Scene scene;
+  const Bvh bvh;
+  auto acc = std::make_unique<hw::Accelerator>("accelerator", cfg, scene, bvh, opt);
+  sc_core::sc_get_curr_simcontext()->elaborate();  // binds the ports; nothing is simulated
+  const bool both = !a.hierarchy && !a.statistics;
+  if (a.hierarchy || both) fmt::print("{}", hw::hierarchy_text(*acc));
+  if (both) fmt::print("\n");
+  if (a.statistics || both) fmt::print("{}", hw::statistics_text(*acc));
+  if (!a.json.empty()) {
+    std::ofstream out(a.json);
+    if (!out) throw std::runtime_error(fmt::format("{}: cannot write JSON", a.json));
+    out << nlohmann::json{{"hierarchy", hw::hierarchy_json(*acc)},
+                          {"statistics", hw::statistics_json(*acc)},
+                          {"config", hw::hw_config_json(cfg)}}
+               .dump(2)
+        << "\n";
+  }
+  acc.reset();
+}
+
+}  // namespace
+
+void add_hw_command(CLI::App& app) {
+  auto args = std::make_shared<HwArgs>();
+  CLI::App* cmd = app.add_subcommand("hw", "show the cycle-level model's module hierarchy and its statistics");
+  cmd->add_flag("--hierarchy", args->hierarchy,
+                "print the elaborated module tree: every instance with its class, parameters and port bindings");
+  cmd->add_flag("--statistics", args->statistics, "print the statistics each kind of module declares");
+  cmd->add_option("--preset", args->preset, "hardware preset, small or large [the config's hw.preset, else small]");
+  cmd->add_option("--json", args->json, "also write the hierarchy, statistics and configuration as JSON here");
+  add_method_options(*cmd, args->method, "validity-bit");
+  cmd->callback([args] { run_hw(*args); });
+}
+
+}  // namespace vbsim::cli
