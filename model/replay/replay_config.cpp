@@ -105,7 +105,7 @@ nlohmann::json read_config_json(const std::string& path) {
   nlohmann::json j;
   try {
     j = nlohmann::json::parse(in);
-  } catch (const nlohmann::json::parse_error& e) {
+  } catch (const nlohmann::json::exception& e) {  // a syntax error, or a number beyond double (out_of_range)
     throw ConfigError(fmt::format("{}: not valid JSON: {}", path, e.what()));
   }
   // A whole stats file: its `config` block is the configuration.

@@ -11,6 +11,7 @@
 
 #include "commands.h"
 #include "exit_codes.h"
+#include "io/output_paths.h"
 #include "provenance/provenance.h"
 #include "systemc_messages.h"
 
@@ -48,6 +49,9 @@ int sc_main(int argc, char** argv) {
     return printed == 0 ? kExitSuccess : kExitUsage;
   } catch (const UsageError& e) {
     fmt::print(stderr, "vbsim: usage error: {}\nRun with --help for more information.\n", e.what());
+    return kExitUsage;
+  } catch (const vbsim::OutputPathError& e) {  // an output naming an input: refused before any work
+    fmt::print(stderr, "vbsim: usage error: {}\n", e.what());
     return kExitUsage;
   } catch (const std::exception& e) {
     fmt::print(stderr, "vbsim: error: {}\n", e.what());

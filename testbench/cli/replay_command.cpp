@@ -9,6 +9,7 @@
 #include <memory>
 
 #include "hw/cycle_replay.h"
+#include "hw/host_memory_estimate.h"
 #include "hw/trace_order_buffer.h"
 #include "io/atomic_output_file.h"
 #include "io/output_paths.h"
@@ -76,6 +77,10 @@ ReplayStats run_cycle_mode(const ReplayArgs& a, const ReplayOptions& opt, TraceS
                            std::ostream* hits, ProgressMeter& meter, nlohmann::json& config, nlohmann::json& hw,
                            std::string& table) {
   hw::HwConfig cfg = hw::resolve_hw_config(a.method.config, a.preset);
+  if (hw::slot_host_bytes(cfg) >= hw::kSlotMemoryWarningBytes)
+    fmt::print(stderr, "vbsim: warning: hw: {} ray slots ({} cores x {} slots_per_core) take about {} MB of host memory\n",
+               uint64_t{cfg.cores} * cfg.slots_per_core, cfg.cores, cfg.slots_per_core,
+               hw::slot_host_bytes(cfg) >> 20);
   if (!a.deps.empty()) cfg.source.dependencies = a.deps == "on";
   config["hw"] = hw::hw_config_json(cfg);
   source.set_triangle_count(sb.scene.size());

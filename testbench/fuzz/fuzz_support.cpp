@@ -2,8 +2,11 @@
 
 #include <unistd.h>
 
+#include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <systemc>  // declares sc_main, with C linkage
 
 namespace vbsim::fuzz {
 
@@ -13,7 +16,10 @@ std::string input_file(const uint8_t* data, size_t size, const char* suffix) {
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
   out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
   out.close();
-  if (!out) finding("cannot write the scratch file " + path);
+  if (!out) {
+    std::fprintf(stderr, "vbsim fuzz: cannot write the scratch file %s\n", path.c_str());
+    std::abort();
+  }
   return path;
 }
 

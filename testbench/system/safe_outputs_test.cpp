@@ -40,6 +40,7 @@ TEST_CASE("an output naming an input is refused and the input stays whole", "[cl
 
   RunResult r = run_vbsim("replay " + trace.string() + " --hits " + trace.string());
   CHECK(r.exit_code != 0);
+  CHECK(r.exit_code == 2);  // a usage error, found before any work
   CHECK_THAT(r.output, Catch::Contains("option '--hits'") && Catch::Contains("also the trace"));
   r = run_vbsim("replay " + trace.string() + " --stats " + (dir / "link.jsonl").string());  // the same file by a link
   CHECK(r.exit_code != 0);
