@@ -36,6 +36,7 @@ nlohmann::json row_json(const ScoreCell& cell, const char* kind, const KindStats
           {"counts", counts},
           {"per_million", rates},
           {"emission_fallbacks", k.emission_fallbacks},
+          {"offset_fallbacks", k.offset_fallbacks},
           {"avoidance",
            {{"candidates", c.candidates},
             {"suspects", c.suspects},
