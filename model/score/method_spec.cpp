@@ -104,6 +104,21 @@ std::vector<MethodSpec> parse_method_list(const std::string& list) {
   return out;
 }
 
+std::vector<TesterKind> parse_tester_list(const std::string& list, const std::string& option) {
+  std::vector<TesterKind> out;
+  std::stringstream in(list);
+  std::string name;
+  while (std::getline(in, name, ',')) {
+    TesterKind t;
+    if (!parse_tester(name, t))
+      throw ConfigError(fmt::format("option '{}': unknown tester '{}' (three-half-plane, moller-trumbore, "
+                                    "pbrt-watertight)", option, name));
+    out.push_back(t);
+  }
+  if (out.empty()) throw ConfigError(fmt::format("option '{}': empty list", option));
+  return out;
+}
+
 const std::vector<std::string>& default_score_methods() {
   static const std::vector<std::string> methods = {
       "none",

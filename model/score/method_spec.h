@@ -27,6 +27,10 @@ MethodSpec parse_method_spec(const std::string& entry);
 /// Parses a ','-separated list of entries (empty entries are errors).
 std::vector<MethodSpec> parse_method_list(const std::string& list);
 
+/// Parses a ','-separated list of tester names; throws ConfigError naming
+/// `option` and the unknown name.
+std::vector<TesterKind> parse_tester_list(const std::string& list, const std::string& option);
+
 /// The methods `vbsim score` compares when no list is given: every method and
 /// the compositions and parameter variants renderers and the patent use.
 const std::vector<std::string>& default_score_methods();

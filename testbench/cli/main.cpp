@@ -25,6 +25,7 @@ int sc_main(int argc, char** argv) {
   add_scenarios_command(app);
   add_fit_command(app);
   add_render_command(app);
+  add_reintersect_command(app);
   try {
     app.parse(argc, argv);
     if (app.get_subcommands().empty()) return run_default_job();

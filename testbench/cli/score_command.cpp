@@ -2,14 +2,17 @@
 // process; a table of verdict rates with 95% intervals (model/score/).
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 #include <thread>
 
 #include "commands.h"
 #include "replay/replay_config.h"
+#include "score/score_markdown.h"
 #include "score/score_run.h"
 #include "score/score_table.h"
+#include "score/tradeoff_table.h"
 
 namespace vbsim::cli {
 
@@ -19,23 +22,10 @@ struct ScoreArgs {
   std::vector<std::string> paths;
   std::string methods, testers = "three-half-plane,moller-trumbore";
   std::string out, markdown, regenerate;
+  std::string mode = "functional", preset, cycle_testers;
   int threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   bool quiet = false;
 };
-
-std::vector<TesterKind> parse_testers(const std::string& list) {
-  std::vector<TesterKind> out;
-  std::stringstream in(list);
-  std::string name;
-  while (std::getline(in, name, ',')) {
-    TesterKind t;
-    if (!parse_tester(name, t))
-      throw ConfigError(fmt::format("option '--testers': unknown tester '{}' (three-half-plane, moller-trumbore)", name));
-    out.push_back(t);
-  }
-  if (out.empty()) throw ConfigError("option '--testers': empty list");
-  return out;
-}
 
 std::string joined_default_methods() {
   std::string s;
@@ -50,32 +40,42 @@ void write_text(const std::string& path, const std::string& text, const char* wh
 }
 
 void print_summary(const nlohmann::json& score) {
-  fmt::print("{:<14} {:<48} {:<17} {:>9} {:>10} {:>10} {:>10} {:>10}\n", "family", "method", "tester",
-             "rays", "self_hit/M", "false/M", "missed/M", "rays/s");
-  for (const auto& r : score["rows"]) {
-    if (r["kind"] != "all") continue;
-    const auto& pm = r["per_million"];
-    fmt::print("{:<14} {:<48} {:<17} {:>9} {:>10} {:>10} {:>10} {:>10.0f}\n", r["family"].get<std::string>(),
-               r["method"].get<std::string>(), r["tester"].get<std::string>(), r["rays"].get<uint64_t>(),
-               format_per_million(pm["self_hit"]["rate"].get<double>()),
-               format_per_million(pm["false_hit"]["rate"].get<double>()),
-               format_per_million(pm["missed"]["rate"].get<double>()), r["rays_per_s"].get<double>());
-  }
+  const std::vector<TradeoffRow> rows = tradeoff_rows(score);
+  const bool cycles = std::any_of(rows.begin(), rows.end(), [](const TradeoffRow& r) { return r.has_cycles; });
+  fmt::print("{:<22} {:<44} {:<16} {:>9} {:>12} {:>13} {:>10} {:>10}\n", "family", "method", "tester",
+             "secondary", "sec. err/M", "camera miss/M", cycles ? "cycles/ray" : "", "rays/s");
+  for (const TradeoffRow& r : rows)
+    fmt::print("{:<22} {:<44} {:<16} {:>9} {:>12} {:>13} {:>10} {:>10.0f}\n", r.family, r.method, r.tester,
+               r.secondary_scored, format_per_million(r.secondary_rate), format_per_million(r.camera_miss_rate),
+               r.has_cycles ? fmt::format("{:.3g}", r.cycles_per_ray) : "", r.rays_per_s);
 }
 
 void run_score_command(const ScoreArgs& a) {
   if (a.threads < 1) throw ConfigError("option '--threads': must be >= 1");
+  if (a.mode != "functional" && a.mode != "cycle")
+    throw ConfigError(fmt::format("option '--mode': '{}' is not a mode (functional, cycle)", a.mode));
+  if (a.mode != "cycle" && (!a.preset.empty() || !a.cycle_testers.empty()))
+    throw ConfigError("options '--preset' and '--cycle-testers' need '--mode cycle'");
   const std::vector<MethodSpec> methods =
       parse_method_list(a.methods.empty() ? joined_default_methods() : a.methods);
-  const std::vector<TesterKind> testers = parse_testers(a.testers);
+  const std::vector<TesterKind> testers = parse_tester_list(a.testers, "--testers");
   const std::vector<ScoreFamily> families = collect_score_families(a.paths);
 
   std::string command = "vbsim score";
   for (const std::string& p : a.paths) command += " " + p;
   if (!a.methods.empty()) command += " --methods " + a.methods;
   command += " --testers " + a.testers;
+  ScoreRunOptions run;
+  run.threads = a.threads;
+  if (a.mode == "cycle") {
+    run.cycle = true;
+    run.hw = hw::resolve_hw_config("", a.preset);
+    run.cycle_testers = a.cycle_testers.empty() ? testers : parse_tester_list(a.cycle_testers, "--cycle-testers");
+    command += " --mode cycle --preset " + run.hw.preset;
+    if (!a.cycle_testers.empty()) command += " --cycle-testers " + a.cycle_testers;
+  }
 
-  const std::vector<ScoreCell> cells = run_score(families, score_configs(methods, testers), a.threads);
+  const std::vector<ScoreCell> cells = run_score(families, score_configs(methods, testers), run);
   const nlohmann::json score = score_json(families, cells, command);
   if (!a.out.empty()) write_text(a.out, score.dump(1) + "\n", "score JSON");
   if (!a.markdown.empty())
@@ -100,7 +100,14 @@ void add_score_command(CLI::App& app) {
   cmd->add_option("--accuracy-md", args->markdown, "write the markdown table here (docs/results/accuracy.md)");
   cmd->add_option("--regenerate-with", args->regenerate,
                   "the command the markdown names for regenerating it [this score command]");
-  cmd->add_option("--threads", args->threads, "worker threads")->capture_default_str();
+  cmd->add_option("--threads", args->threads, "worker threads of the functional replays")->capture_default_str();
+  cmd->add_option("--mode", args->mode,
+                  "functional, or cycle: also every configuration's cycles per ray and rays per cycle from the "
+                  "cycle-level model on the same traces (one replay at a time)")
+      ->capture_default_str();
+  cmd->add_option("--preset", args->preset, "cycle mode: hardware preset, small or large [small]");
+  cmd->add_option("--cycle-testers", args->cycle_testers,
+                  "cycle mode: the testers whose configurations are timed [every tester of --testers]");
   cmd->add_flag("--quiet,-q", args->quiet, "print nothing on success");
   cmd->callback([args] { run_score_command(*args); });
 }
