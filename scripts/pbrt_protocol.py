@@ -33,8 +33,20 @@ def reintersect(vbsim, triangles, methods, testers, json_path):
         return json.load(f)
 
 
+def per_million(x):
+    """As vbsim's tables write a rate: integers from 100 up, one decimal from 1, two digits below."""
+    if x == 0:
+        return "0"
+    if x >= 99.5:
+        return f"{x:.0f}"
+    if x >= 0.995:
+        return f"{x:.1f}"
+    return f"{x:.2g}"
+
+
 def rate(r):
-    return f"{r['count']} of {r['of']}: {r['rate']:.3g} [{r['lower']:.3g}, {r['upper']:.3g}] per million"
+    return (f"{r['count']} of {r['of']}: {per_million(r['rate'])} "
+            f"[{per_million(r['lower'])}, {per_million(r['upper'])}] per million")
 
 
 def table(run):

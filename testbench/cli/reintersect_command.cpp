@@ -28,7 +28,8 @@ void write_file(const std::string& path, const std::string& text) {
 
 void run(ReintersectArgs a) {
   if (a.params.triangles < 1) throw ConfigError("option '--triangles': must be >= 1");
-  if (a.params.children < 0) throw ConfigError("option '--children': must be >= 0");
+  if (a.params.children < 0 || a.params.children > 1000000)
+    throw ConfigError("option '--children': must lie in [0, 1000000]");
   if (a.params.threads < 1) throw ConfigError("option '--threads': must be >= 1");
   if (!(a.params.exp >= 0 && a.params.exp <= 30)) throw ConfigError("option '--exp': must lie in [0, 30]");
   const std::vector<ScoreConfig> configs =
