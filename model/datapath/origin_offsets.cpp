@@ -2,10 +2,10 @@
 
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <limits>
 
 #include "datapath/dvec3.h"
+#include "datapath/float_bits.h"
 #include "datapath/pbrt_interaction.h"
 
 namespace vbsim {
@@ -33,18 +33,6 @@ Vec3f keep_finite(Vec3f p, Vec3f moved, OffsetOutcome& outcome) {
   if (is_finite(moved)) return moved;
   outcome = OffsetOutcome::NotOffset;
   return p;
-}
-
-uint32_t float_as_bits(float f) {
-  uint32_t i;
-  std::memcpy(&i, &f, sizeof i);
-  return i;
-}
-
-float bits_as_float(uint32_t i) {
-  float f;
-  std::memcpy(&f, &i, sizeof f);
-  return f;
 }
 
 /// The chapter's int(int_scale * n): truncation toward zero, saturated to the
@@ -78,7 +66,7 @@ Vec3f offset_ray_listing_6_1(Vec3f p, Vec3f n, const AdaptiveOffsetParams& param
   for (int i = 0; i < 3; ++i) {
     const uint32_t of = static_cast<uint32_t>(ulps_of(params.int_scale * n[i]));
     // Two's-complement steps on the bit pattern, wrapping as a GPU's 32-bit int does.
-    const float p_i = bits_as_float(float_as_bits(p[i]) + (p[i] < 0 ? 0u - of : of));
+    const float p_i = bits_float(float_bits(p[i]) + (p[i] < 0 ? 0u - of : of));
     out[i] = std::fabs(p[i]) < params.origin ? p[i] + params.float_scale * n[i] : p_i;
   }
   return out;

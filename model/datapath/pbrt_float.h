@@ -15,9 +15,9 @@
 #pragma once
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <limits>
 
+#include "datapath/float_bits.h"
 #include "datapath/vec3.h"
 
 namespace vbsim::pbrt {
@@ -57,18 +57,6 @@ inline Vec3f pbrt_normalize(Vec3f a) {
 
 /// pbrt's FaceForward(n, v): -n when pbrt_dot(n, v) < 0, else n.
 inline Vec3f face_forward(Vec3f n, Vec3f v) { return pbrt_dot(n, v) < 0.0f ? -n : n; }
-
-inline uint32_t float_bits(float f) {
-  uint32_t u;
-  std::memcpy(&u, &f, sizeof u);
-  return u;
-}
-
-inline float bits_float(uint32_t u) {
-  float f;
-  std::memcpy(&f, &u, sizeof f);
-  return f;
-}
 
 inline float next_float_up(float v) {
   if (std::isinf(v) && v > 0.0f) return v;

@@ -34,5 +34,7 @@ std::vector<TesterKind> parse_tester_list(const std::string& list, const std::st
 /// The methods `vbsim score` compares when no list is given: every method and
 /// the compositions and parameter variants renderers and the patent use.
 const std::vector<std::string>& default_score_methods();
+/// The same joined by ',', as --methods takes them.
+std::string default_score_method_list();
 
 }  // namespace vbsim

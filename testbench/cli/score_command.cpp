@@ -27,12 +27,6 @@ struct ScoreArgs {
   bool quiet = false;
 };
 
-std::string joined_default_methods() {
-  std::string s;
-  for (const std::string& m : default_score_methods()) s += (s.empty() ? "" : ",") + m;
-  return s;
-}
-
 void write_text(const std::string& path, const std::string& text, const char* what) {
   std::ofstream out(path);
   if (!out || !(out << text) || !(out.flush()))
@@ -57,7 +51,7 @@ void run_score_command(const ScoreArgs& a) {
   if (a.mode != "cycle" && (!a.preset.empty() || !a.cycle_testers.empty()))
     throw ConfigError("options '--preset' and '--cycle-testers' need '--mode cycle'");
   const std::vector<MethodSpec> methods =
-      parse_method_list(a.methods.empty() ? joined_default_methods() : a.methods);
+      parse_method_list(a.methods.empty() ? default_score_method_list() : a.methods);
   const std::vector<TesterKind> testers = parse_tester_list(a.testers, "--testers");
   const std::vector<ScoreFamily> families = collect_score_families(a.paths);
 
@@ -94,7 +88,7 @@ void add_score_command(CLI::App& app) {
       ->required();
   cmd->add_option("--methods", args->methods,
                   "comma list of METHOD[+METHOD][:KEY=VALUE...], KEY a replay option without dashes "
-                  "(e.g. validity-bit:vb-eps-mode=fixed:vb-eps=1e-4) [" + joined_default_methods() + "]");
+                  "(e.g. validity-bit:vb-eps-mode=fixed:vb-eps=1e-4) [" + default_score_method_list() + "]");
   cmd->add_option("--testers", args->testers, "comma list of testers")->capture_default_str();
   cmd->add_option("--out", args->out, "write the score table as JSON here");
   cmd->add_option("--accuracy-md", args->markdown, "write the markdown table here (docs/results/accuracy.md)");

@@ -15,12 +15,7 @@ namespace vbsim::cli {
 
 void print_tradeoff_table(const std::string& trace) {
   std::vector<ScoreConfig> configs;
-  for (const MethodSpec& m : parse_method_list([] {
-         std::string s;
-         for (const std::string& m : default_score_methods()) s += (s.empty() ? "" : ",") + m;
-         return s;
-       }()))
-    configs.push_back({m.label, m.options});
+  for (const MethodSpec& m : parse_method_list(default_score_method_list())) configs.push_back({m.label, m.options});
   // pbrt-v4's offset with pbrt-v4's own tester, the pair its published zero is for.
   ScoreConfig pbrt{"offset-errbound", parse_method_spec("offset-errbound").options};
   pbrt.options.tester = TesterKind::PbrtWatertight;

@@ -11,8 +11,8 @@
 #include <cfloat>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 
+#include "datapath/float_bits.h"
 #include "datapath/vec3.h"
 #include "exact/rational_rounding.h"
 
@@ -43,9 +43,7 @@ inline float round_float(const mpq_class& q) {
       best = c;
       best_err = err;
     } else if (err == best_err) {  // a tie: the float with an even significand
-      uint32_t bits;
-      std::memcpy(&bits, &c, sizeof bits);
-      if ((bits & 1u) == 0) best = c;
+      if ((float_bits(c) & 1u) == 0) best = c;
     }
   }
   return best;

@@ -4,8 +4,8 @@
 
 #include <cfloat>
 #include <cmath>
-#include <cstring>
 
+#include "datapath/float_bits.h"
 #include "datapath/origin_offsets.h"
 #include "datapath/pbrt_float.h"
 #include "exact/exact_geometry.h"
@@ -13,18 +13,6 @@
 using namespace vbsim;
 
 namespace {
-
-uint32_t bits(float f) {
-  uint32_t u;
-  std::memcpy(&u, &f, sizeof u);
-  return u;
-}
-
-float from_bits(uint32_t u) {
-  float f;
-  std::memcpy(&f, &u, sizeof f);
-  return f;
-}
 
 Vec3f unit_diagonal() {
   const float c = static_cast<float>(1.0 / std::sqrt(3.0));
@@ -50,7 +38,7 @@ TEST_CASE("Listing 6-1: integer-ulp offset away from zero, float offset near zer
   CHECK(q.y == 0.01f + std::ldexp(1.0f, -16));
   // int(256 * 0.6) = 153: truncation, as the chapter's int3 conversion.
   const Vec3f r = offset_ray_listing_6_1({4.0f, 0, 0}, {0.6f, 0, 0.8f}, params);
-  CHECK(bits(r.x) == bits(4.0f) + 153);
+  CHECK(float_bits(r.x) == float_bits(4.0f) + 153);
 }
 
 TEST_CASE("offset-adaptive flips the unit geometric normal onto the ray's side", "[offsets]") {
@@ -144,7 +132,7 @@ TEST_CASE("a 3e38 triangle's overflowing normal is taken in double precision", "
   const Vec3f o = offset_adaptive(p, tri, {1, 1, 1}, AdaptiveOffsetParams{}, outcome);
   CHECK(outcome == OffsetOutcome::NormalInDouble);
   const int32_t ulps = static_cast<int32_t>(256.0f * unit_diagonal().x);  // int(147.8) = 147
-  CHECK(o.x == from_bits(bits(1e38f) + ulps));
+  CHECK(o.x == bits_float(float_bits(1e38f) + ulps));
   outcome = OffsetOutcome::Reference;
   const float third = 1.0f / 3;
   const Vec3f e = offset_error_bound(p, tri, third, third, 1 - third - third, nullptr, {1, 1, 1}, outcome);
@@ -168,5 +156,5 @@ TEST_CASE("Listing 6-1 saturates an int_scale beyond the int range", "[offsets][
   params.int_scale = 1e12f;  // int(1e12) does not exist
   const Vec3f o = offset_ray_listing_6_1({-8.0f, 1.0f, 1.0f}, {1, 0, 0}, params);
   // The bits of -8 step by -(INT_MAX) and wrap, as 32-bit integers do: a defined value.
-  CHECK(bits(o.x) == bits(-8.0f) - 2147483647u);
+  CHECK(float_bits(o.x) == float_bits(-8.0f) - 2147483647u);
 }
