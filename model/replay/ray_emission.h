@@ -17,6 +17,10 @@ struct EmittedRay {
   Ray ray;
   bool reversed = false;        ///< reverse-shadow: traced from the light back
   bool emission_fallback = false;  ///< a step needed parent data the ray lacks and was skipped
+  /// An offset or shading position could not follow its reference's float
+  /// arithmetic (a degenerate normal; origin_offsets.h): it took the double
+  /// normal or left the origin as it was.
+  bool offset_fallback = false;
 };
 
 /// Parent sign bit of the trace spec: the given `sign`, else dot(d, Ng(parent_prim)) < 0
