@@ -25,12 +25,7 @@ struct Logged {
 
 Logged run_logged(const std::vector<TraceRay>& rays, const Scene& scene, const Bvh& bvh, const HwConfig& cfg) {
   Logged out;
-  size_t next = 0;
-  const RayFeed feed = [&](TraceRay& tr) {
-    if (next == rays.size()) return false;
-    tr = rays[next++];
-    return true;
-  };
+  const RayFeed feed = feed_of(rays);
   CycleRunOptions options;
   options.ray_times = [&](const RayTimes& t) { out.times[t.id] = t; };
   out.result = run_cycle_replay(feed, scene, bvh, ReplayOptions{}, cfg, {}, options);
