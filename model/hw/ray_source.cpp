@@ -28,7 +28,8 @@ bool same_origin(const TraceRay& a, const TraceRay& b) { return std::memcmp(&a.o
 RaySource::RaySource(sc_core::sc_module_name name, const HwConfig& config, FunctionalReplayer& replayer)
     : sc_core::sc_module(name), config_(config.source), latency_(config.shader.latency_cycles), replayer_(replayer),
       lanes_count_(std::max<uint32_t>(1, config.source.rays_per_cycle)),
-      window_(std::max<uint32_t>(1, config.source.window)), capacity_(2 * window_), lanes_(lanes_count_) {
+      window_(std::max<uint32_t>(1, config.source.window)), capacity_(2 * window_), lanes_(lanes_count_),
+      position_of_(capacity_), ready_(window_) {
   ring_.reserve(std::min<uint32_t>(capacity_, 4096));
   const SourceCounters& c = counters_;
   const EmissionCounters& e = emission_;
@@ -96,8 +97,7 @@ void RaySource::fill(uint64_t now) {
     if (ring_.size() < capacity_ && next_ == ring_.size()) ring_.emplace_back();  // grows to its capacity as rays come
     Entry& e = at_pos(next_);
     if (next_ >= capacity_) {  // the place's previous ray left the history: forget its id
-      const auto it = position_of_.find(e.ray.tr.id);
-      if (it != position_of_.end() && it->second == next_ - capacity_) position_of_.erase(it);
+      position_of_.erase(e.ray.tr.id, next_ - capacity_);
     }
     if (!feed_ || !feed_(e.ray.tr)) {
       ended_ = true;
@@ -130,15 +130,15 @@ void RaySource::enter(uint64_t pos, uint64_t now) {
       throw std::runtime_error(locate_ ? locate_("id", what) : fmt::format("trace position {}: {}", pos, what));
     }
     if (tr.parent >= 0) {
-      const auto it = position_of_.find(tr.parent);
-      if (it == position_of_.end() || it->second < history) {
+      uint64_t parent_pos = 0;
+      if (!position_of_.find(tr.parent, parent_pos) || parent_pos < history) {
         ++emission_.parents_not_found;
         if (unresolved_.size() > 4 * size_t{window_})  // forget the children too far behind to matter
           for (auto u = unresolved_.begin(); u != unresolved_.end();)
             u = u->second < history ? unresolved_.erase(u) : std::next(u);
         unresolved_.emplace(tr.parent, pos);
       } else {
-        Entry& parent = at_pos(it->second);
+        Entry& parent = at_pos(parent_pos);
         if (parent.state != State::Finished || parent.finish + latency_ > now) {
           // Ready with the parent's other children, when its result has been shaded.
           waits = true;
@@ -149,14 +149,14 @@ void RaySource::enter(uint64_t pos, uint64_t now) {
           ++emission_.children_waited;
           if (parent.state == State::Finished && !parent.event_pending) {
             parent.event_pending = true;
-            host_->schedule_source_event(lanes_count_ + static_cast<uint32_t>(it->second % capacity_),
+            host_->schedule_source_event(lanes_count_ + static_cast<uint32_t>(parent_pos % capacity_),
                                          parent.finish + latency_);
           }
         }
       }
     }
   }
-  position_of_[tr.id] = pos;
+  position_of_.set(tr.id, pos);
   if (!waits) make_ready(pos, ready);
 }
 

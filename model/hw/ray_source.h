@@ -30,7 +30,6 @@
 #include <cstdint>
 #include <deque>
 #include <functional>
-#include <queue>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -39,7 +38,9 @@
 
 #include "hw/hw_config.h"
 #include "hw/hw_counters.h"
+#include "hw/id_position_map.h"
 #include "hw/ray_feed.h"
+#include "hw/ready_queue.h"
 #include "hw/stat_provider.h"
 #include "replay/functional_replayer.h"
 
@@ -150,9 +151,9 @@ class RaySource final : public sc_core::sc_module, public StatProvider {
   uint64_t next_ = 0;  ///< the next position to read
   bool ended_ = false;
   uint64_t waiting_count_ = 0;  ///< buffered rays waiting for a parent
-  std::unordered_map<int64_t, uint64_t> position_of_;  ///< id -> position, for [base - window, next)
+  IdPositionMap position_of_;  ///< id -> position, for [next - capacity, next)
   std::unordered_map<int64_t, uint64_t> unresolved_;   ///< parent id not found -> its child's position
-  std::priority_queue<uint64_t, std::vector<uint64_t>, std::greater<uint64_t>> ready_;  ///< ready positions
+  ReadyQueue ready_;  ///< ready positions, smallest first
   std::deque<uint32_t> held_;  ///< lanes holding an emitted ray for want of a slot, oldest first
   SourceCounters counters_;
   EmissionCounters emission_;
