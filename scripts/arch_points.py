@@ -59,11 +59,12 @@ def arch_point(vbsim, cache, trace, config, method):
 
 def bound_terms(stats):
     """The throughput bound of docs/hw-model.md, term by term, in rays per cycle:
-    the source (its busy cycles per ray) and each unit kind (cores x count /
+    the source (its lanes over their busy cycles per ray) and each unit kind (cores x count /
     (issue interval x operations per ray)). A unit kind with no operation sets no bound."""
     hw, cfg = stats["hw"], stats["config"]["hw"]
     rays = hw["rays"] or 1
-    terms = {"source": rays / max(hw["source"]["busy_cycles"], 1)}
+    lanes = cfg.get("source", {}).get("rays_per_cycle", 1)
+    terms = {"source": lanes * rays / max(hw["source"]["busy_cycles"], 1)}
     for unit in ("box", "triangle", "avoidance"):
         ops_per_ray = hw["units"][unit]["ops_per_ray"]
         if ops_per_ray > 0:
@@ -106,6 +107,8 @@ def summarise(stats):
         "cores": cfg["cores"],
         "slots_per_core": cfg["slots_per_core"],
         "ideal_memory": cfg["memory"]["ideal"],
+        "dependencies": cfg.get("source", {}).get("dependencies", False),
+        "lane_idle_for_parents": hw.get("emission", {}).get("share_of_lane_cycles", {}).get("idle_for_dependencies"),
     }
 
 

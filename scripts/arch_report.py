@@ -123,12 +123,17 @@ def presets_section(preset_rows, method):
            f"Method `{method}`. One box operation tests both child boxes of a node, so child-box "
            "tests per second are twice the box operations. Published PowerVR figure for scale: "
            "300 Mrays/s and 24 G node tests/s at 600 MHz (40 node tests per cycle, 80 per ray).", ""]
-    header = ["preset", "trace", "memory", "rays", "cycles", "rays/cycle", "Mrays/s", "box ops/ray",
-              "G box ops/s", "G child-box tests/s", "L1 hit", "L2 hit", "DRAM bandwidth use",
-              "what limits it"]
-    body = [[r["preset"], r["trace"], "ideal" if r["ideal_memory"] else "hierarchy", r["rays"], r["cycles"],
-             r["rays_per_cycle"], r["rays_per_s"] / 1e6, r["box_ops_per_ray"], r["box_ops_per_s"] / 1e9,
-             2 * r["box_ops_per_s"] / 1e9, r["l1_hit_rate"], r["l2_hit_rate"], r["dram_bandwidth_use"], limit_text(r)]
+    out += ["Dependencies `on`: a child ray waits for its parent's result plus the shading latency "
+            "(`shader.latency_cycles`, docs/hw-model.md); `off`: every ray independent, as a trace of unrelated "
+            "queries. Latency is from dispatch to result, per ray.", ""]
+    header = ["preset", "trace", "memory", "dependencies", "rays", "cycles", "rays/cycle", "Mrays/s",
+              "mean latency", "lanes idle for parents", "box ops/ray", "G box ops/s", "G child-box tests/s",
+              "L1 hit", "L2 hit", "DRAM bandwidth use", "what limits it"]
+    body = [[r["preset"], r["trace"], "ideal" if r["ideal_memory"] else "hierarchy",
+             "on" if r.get("dependencies") else "off", r["rays"], r["cycles"], r["rays_per_cycle"],
+             r["rays_per_s"] / 1e6, r["mean_latency"], r.get("lane_idle_for_parents"), r["box_ops_per_ray"],
+             r["box_ops_per_s"] / 1e9, 2 * r["box_ops_per_s"] / 1e9, r["l1_hit_rate"], r["l2_hit_rate"],
+             r["dram_bandwidth_use"], limit_text(r)]
             for r in preset_rows]
     return out + table(header, body) + [""]
 

@@ -98,8 +98,10 @@ def preset_points(vbsim, work, definition, sweep_trace):
         for name, tspec in spec["traces"].items():
             trace = sweep_trace if tspec == "sweep" else trace_file(vbsim, work, tspec)
             for ideal in (False, True):
-                points.append((trace, {"hw": {"preset": preset, "memory": {"ideal": ideal}}}, method))
-                labels.append({"preset": preset, "trace": name})
+                for deps in (True, False):
+                    points.append((trace, {"hw": {"preset": preset, "memory": {"ideal": ideal},
+                                                  "source": {"dependencies": deps}}}, method))
+                    labels.append({"preset": preset, "trace": name})
     return points, labels
 
 

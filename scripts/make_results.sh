@@ -1,17 +1,21 @@
 #!/usr/bin/env bash
 # Regenerates every committed result in docs/results/ with one command:
 #  1. accuracy.md: generates every scenario `vbsim scenarios` lists into
-#     build/results/scenarios/FAMILY with a fixed seed (random-triangles as two
-#     families, one per protocol) and scores all of them with every method and
-#     all three testers (`vbsim score`); the full table also goes to
+#     build/results/scenarios/FAMILY with a fixed seed (random-triangles as
+#     three families, one per protocol) and scores all of them with every method
+#     and all three testers in cycle mode (`vbsim score --mode cycle`: the
+#     three-half-plane configurations also timed by the cycle-level model on the
+#     small preset, in the same run); the full table also goes to
 #     build/results/accuracy.json;
-#  2. architecture.md and arch-*.png: the cycle-level model swept over its
+#  2. pbrt-protocol.md: pbrt-v4's Reintersect protocol at pbrt's size and at
+#     100 times it (scripts/pbrt_protocol.py);
+#  3. architecture.md and arch-*.png: the cycle-level model swept over its
 #     knobs, the presets' predictions, and every method's cycles per ray on the
 #     same scenario families (scripts/arch_sweep.py);
-#  3. pareto.md and pareto-*.png: speed against accuracy, with those cycles per
-#     ray on one cost axis (scripts/pareto.py);
-#  4. stability.md, sweep-*.png, sweeps.csv: stability sweeps (scripts/sweep.py);
-#  5. montage.png: every method rendered on the failure scenes
+#  4. pareto.md and pareto-*.png: speed against accuracy, drawn from the one
+#     table of step 1 (scripts/pareto.py);
+#  5. stability.md, sweep-*.png, sweeps.csv: stability sweeps (scripts/sweep.py);
+#  6. montage.png: every method rendered on the failure scenes
 #     (scripts/make_montage.py).
 #
 #   scripts/make_results.sh [--rays N] [--seed S] [--backend slurm [--partition P]
@@ -42,11 +46,12 @@ while (($#)); do
 done
 
 # Per-family ray counts where the common one does not fit: a random-triangles
-# "ray" is a triangle with its own scene and trace and about ten rays.
+# "ray" is a triangle with its own scene and trace and about ten rays (pbrt-v4:
+# N/10 = 1000 triangles, pbrt's own count, with 8 + 8 children each).
 rays_for() {
   case "$1" in
     random-triangles-rtg) echo $((rays / 5)) ;;
-    random-triangles-pbrt) echo $((rays / 10)) ;;
+    random-triangles-pbrt|random-triangles-pbrt-v4) echo $((rays / 10)) ;;
     *) echo "$rays" ;;
   esac
 }
@@ -55,7 +60,8 @@ rays_for() {
 families_of() {
   case "$1" in
     random-triangles) echo "random-triangles-rtg --set protocol=rtg"
-                      echo "random-triangles-pbrt --set protocol=pbrt" ;;
+                      echo "random-triangles-pbrt --set protocol=pbrt"
+                      echo "random-triangles-pbrt-v4 --set protocol=pbrt-v4" ;;
     paths) echo "paths"
            echo "paths-wuson --set scene=traces/wuson/WusonOBJ.obj" ;;
     *) echo "$1" ;;
@@ -79,20 +85,22 @@ for scenario in $("$vbsim" scenarios --names); do
 done
 
 testers=three-half-plane,moller-trumbore,pbrt-watertight
+cycle=(--mode cycle --preset small --cycle-testers three-half-plane)
 regenerate="scripts/make_results.sh${args[*]:+ ${args[*]}}"
 if ((${#backend[@]})); then
-  /usr/bin/python3 scripts/score_points.py "${dirs[@]}" --vbsim "$vbsim" --testers "$testers" \
+  /usr/bin/python3 scripts/score_points.py "${dirs[@]}" --vbsim "$vbsim" --testers "$testers" "${cycle[@]}" \
     --out "$out/accuracy.json" --accuracy-md docs/results/accuracy.md --regenerate-with "$regenerate" "${backend[@]}"
 else
-  "$vbsim" score "${dirs[@]}" --testers "$testers" --out "$out/accuracy.json" --accuracy-md docs/results/accuracy.md \
-    --regenerate-with "$regenerate"
+  "$vbsim" score "${dirs[@]}" --testers "$testers" "${cycle[@]}" --out "$out/accuracy.json" \
+    --accuracy-md docs/results/accuracy.md --regenerate-with "$regenerate" > "$out/score.txt"
 fi
 echo "make_results.sh: wrote docs/results/accuracy.md and $out/accuracy.json" >&2
 
+/usr/bin/python3 scripts/pbrt_protocol.py --vbsim "$vbsim" --out docs/results --results "$out"
+
 /usr/bin/python3 scripts/arch_sweep.py --vbsim "$vbsim" --families "${dirs[@]}" --out docs/results \
   --results "$out" ${backend[@]+"${backend[@]}"}
-/usr/bin/python3 scripts/pareto.py --score "$out/accuracy.json" --cycles "$out/method_cycles.json" \
-  --out docs/results
+/usr/bin/python3 scripts/pareto.py --score "$out/accuracy.json" --out docs/results
 /usr/bin/python3 scripts/sweep.py --vbsim "$vbsim" --work "$out/sweeps" --out docs/results ${backend[@]+"${backend[@]}"}
 /usr/bin/python3 scripts/make_montage.py
 echo "make_results.sh: every result in docs/results/ regenerated" >&2

@@ -4,20 +4,22 @@ its error rate, one chart per family with one panel per cost axis, and the
 Pareto front (methods no other method beats on both cost and error) marked.
 
     /usr/bin/python3 scripts/pareto.py [--score build/results/accuracy.json]
-        [--cycles build/results/method_cycles.json] [--tester three-half-plane]
-        [--out docs/results]
+        [--tester three-half-plane] [--out docs/results]
 
 Input: the JSON table of `vbsim score --out` (rows per family, method, tester
-and ray kind). Cost axes, lower is better on each:
+and ray kind), the one table that holds both the error rates and, from
+`vbsim score --mode cycle`, the cycle-level costs of the same traces. Cost
+axes, lower is better on each:
   - operations per ray: emission + candidate x candidates/ray + suspect x
     suspects/ray, the counts of model/datapath/method_costs.cpp with the
     candidates and suspects measured in the run;
   - bits per ray in flight (the ray record the hardware holds);
   - functional replay time per ray (microseconds; from rays per second; it
     includes the exact verdicts, which cost more for wrong answers);
-  - cycles per ray of the cycle-level model, when --cycles names a file of
-    rows {family, method, cycles_per_ray} (method in score's syntax).
-Error rate: (self_hit + false_hit + missed) / scored rays, all ray kinds.
+  - cycles per ray of the cycle-level model (the `cycle` object of the `all`
+    rows, present when the table was made in cycle mode).
+Error rate: (self_hit + false_hit + missed) / scored secondary rays (every ray
+that leaves a surface; camera rays are not what the methods are about).
 Output: OUT/pareto-FAMILY.png and OUT/pareto.md (generated).
 """
 import argparse
@@ -46,19 +48,24 @@ def error_rate(row):
     return sum(row["counts"][k] for k in ERROR_KINDS) / n if n else 0.0
 
 
-def points_of(rows, family, tester, cycles):
-    """One point per method of a family: its error rate and costs."""
+def points_of(rows, family, tester):
+    """One point per method of a family: its secondary-ray error rate and costs."""
+    secondary = {r["method"]: r for r in rows
+                 if r["family"] == family and r["tester"] == tester and r["kind"] == "secondary"}
     out = []
     for r in rows:
         if r["family"] != family or r["tester"] != tester or r["kind"] != "all":
             continue
-        p = {"method": r["method"], "error": error_rate(r), "scored": r["scored"],
-             "errors": sum(r["counts"][k] for k in ERROR_KINDS),
+        sec = secondary.get(r["method"])
+        if sec is None:
+            sys.exit(f"pareto: no secondary row for {family} / {r['method']} / {tester}: "
+                     "regenerate the table with this vbsim")
+        p = {"method": r["method"], "error": error_rate(sec), "scored": sec["scored"],
+             "errors": sum(sec["counts"][k] for k in ERROR_KINDS),
              "ops": ops_per_ray(r), "bits": r["config"]["bits_per_ray"],
              "us": 1e6 / r["rays_per_s"] if r.get("rays_per_s") else float("nan")}
-        c = cycles.get((family, r["method"]))
-        if c is not None:
-            p["cycles"] = c
+        if "cycle" in r:
+            p["cycles"] = r["cycle"]["cycles_per_ray"]
         out.append(p)
     return out
 
@@ -75,7 +82,7 @@ def pareto_front(points, cost):
 
 
 AXES = [("ops", "operations per ray (method only)"), ("bits", "bits per ray in flight"),
-        ("us", "functional replay, microseconds per ray"), ("cycles", "cycles per ray, cycle-level model (small preset)")]
+        ("us", "functional replay, microseconds per ray"), ("cycles", "cycles per ray, cycle-level model")]
 
 
 def plot_family(family, points, path):
@@ -103,7 +110,7 @@ def plot_family(family, points, path):
             ax.set_xscale("log")
         ax.set_xlabel(label)
         ax.grid(True, linewidth=0.4, alpha=0.5)
-    panels[0][0].set_ylabel("errors per ray (dotted line: no error)")
+    panels[0][0].set_ylabel("errors per secondary ray (dotted line: no error)")
     handles, labels = panels[0][0].get_legend_handles_labels()
     fig.legend(handles, labels, loc="lower center", ncol=4, fontsize=7, frameon=False)
     fig.suptitle(f"Speed against accuracy: {family} (red: Pareto front)", fontsize=11)
@@ -116,32 +123,29 @@ def plot_family(family, points, path):
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--score", default=os.path.join(ROOT, "build", "results", "accuracy.json"))
-    ap.add_argument("--cycles", default=os.path.join(ROOT, "build", "results", "method_cycles.json"))
     ap.add_argument("--tester", default="three-half-plane")
     ap.add_argument("--out", default=os.path.join(ROOT, "docs", "results"))
     args = ap.parse_args()
     if not os.path.exists(args.score):
         sys.exit(f"pareto: {args.score} not found: run scripts/make_results.sh (or vbsim score --out) first")
     with open(args.score) as f:
-        rows = json.load(f)["rows"]
-    cycles = {}
-    if os.path.exists(args.cycles):
-        with open(args.cycles) as f:
-            for c in json.load(f)["rows"]:
-                cycles[(c["family"], c["method"])] = c["cycles_per_ray"]
+        score = json.load(f)
+    rows = score["rows"]
+    presets = sorted({r["cycle"]["preset"] for r in rows if "cycle" in r})
     families = sorted({r["family"] for r in rows})
     os.makedirs(args.out, exist_ok=True)
     lines = ["# Speed against accuracy", "",
              "Generated by `scripts/pareto.py` from the table of `vbsim score` "
              "(`scripts/make_results.sh` runs both); do not edit by hand.", "",
-             f"Tester: {args.tester}. Error rate: (self_hit + false_hit + missed) per scored ray over all "
-             "ray kinds. Costs, lower is better: operations per ray of the method itself "
-             "(`docs/methods.md`, with the candidates and suspects each scenario really produces), "
-             "bits per ray in flight, functional replay time per ray, and, where measured, the "
-             "cycle-level model's cycles per ray. The Pareto front holds the methods that no "
-             "other method beats on both the cost and the error rate.", ""]
+             f"Tester: {args.tester}. Error rate: (self_hit + false_hit + missed) per scored secondary "
+             "ray (every ray that leaves a surface). Costs, lower is better: operations per ray of the "
+             "method itself (`docs/methods.md`, with the candidates and suspects each scenario really "
+             "produces), bits per ray in flight, functional replay time per ray, and the cycle-level "
+             f"model's cycles per ray ({', '.join(presets) or 'not measured'} preset), all from the one "
+             f"table `{score['command']}` wrote. The Pareto front holds the methods that no other method "
+             "beats on both the cost and the error rate.", ""]
     for family in families:
-        points = points_of(rows, family, args.tester, cycles)
+        points = points_of(rows, family, args.tester)
         if not points:
             continue
         name = f"pareto-{family}.png"

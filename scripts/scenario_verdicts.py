@@ -3,8 +3,9 @@
 
 Generates each scenario with its default settings (`vbsim gen NAME -o DIR`),
 replays every trace of it with each method (`vbsim replay --stats`) and prints
-a Markdown table: per method and scenario, self_hit / missed / false_hit
-summed over all rays of all cases.
+a Markdown table: per method and scenario, self_hit / missed / false_hit of the
+secondary rays (every ray that leaves a surface) summed over all cases, then
+the camera rays missed in brackets (the tester's, not the method's, errors).
 
 usage: scripts/scenario_verdicts.py [--vbsim build/vbsim] [--rays N] [--seed S]
                                     [--per-case] [--set key=value ...] SCENARIO...
@@ -22,10 +23,19 @@ METHODS = ["none", "tmin", "primid", "offset-normal", "offset-direction", "offse
 
 
 def replay(vbsim, trace, method, stats):
+    """Secondary rays' self_hit, missed, false_hit and count; camera rays missed."""
     subprocess.run([vbsim, "replay", trace, "-m", method, "--stats", stats, "-q"], check=True)
     with open(stats) as f:
-        v = json.load(f)["verdicts"]
-    return v["self_hit"], v["missed"], v["false_hit"], sum(v.values())
+        kinds = json.load(f)["by_kind"]
+    sec = [0, 0, 0, 0]
+    for kind, k in kinds.items():
+        if kind == "primary":
+            continue
+        v = k["verdicts"]
+        for i, x in enumerate((v["self_hit"], v["missed"], v["false_hit"], sum(v.values()))):
+            sec[i] += x
+    camera = kinds.get("primary", {}).get("verdicts", {}).get("missed", 0)
+    return (*sec, camera)
 
 
 def main():
@@ -54,14 +64,14 @@ def main():
         for m in METHODS:
             cells = []
             for label, traces in columns:
-                tot = [0, 0, 0, 0]
+                tot = [0, 0, 0, 0, 0]
                 for t in traces:
                     for i, x in enumerate(replay(a.vbsim, t, m, os.path.join(tmp, "stats.json"))):
                         tot[i] += x
                 rays[label] = tot[3]
-                cells.append("{} / {} / {}".format(*tot[:3]))
+                cells.append("{} / {} / {} ({})".format(*tot[:3], tot[4]))
             rows.append("| `{}` | {} |".format(m, " | ".join(cells)))
-    print("| method | " + " | ".join("{} ({} rays)".format(l, rays[l]) for l, _ in columns) + " |")
+    print("| method | " + " | ".join("{} ({} secondary rays)".format(l, rays[l]) for l, _ in columns) + " |")
     print("|---" * (len(columns) + 1) + "|")
     print("\n".join(rows))
 

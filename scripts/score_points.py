@@ -71,6 +71,9 @@ def main():
     ap.add_argument("--methods", help="as vbsim score --methods [its default list]")
     ap.add_argument("--testers", help="as vbsim score --testers [its default]")
     ap.add_argument("--threads", type=int, default=1, help="threads per vbsim score process (and Slurm task)")
+    ap.add_argument("--mode", choices=["functional", "cycle"], help="as vbsim score --mode [functional]")
+    ap.add_argument("--preset", help="as vbsim score --preset (cycle mode)")
+    ap.add_argument("--cycle-testers", help="as vbsim score --cycle-testers (cycle mode)")
     ap.add_argument("--vbsim", default=os.path.join(ROOT, "build", "vbsim"))
     ap.add_argument("--work", default=os.path.join(ROOT, "build", "score"), help="cached per-family tables")
     add_backend_arguments(ap)
@@ -87,6 +90,9 @@ def main():
         options += ["--methods", args.methods]
     if args.testers:
         options += ["--testers", args.testers]
+    for flag, value in (("--mode", args.mode), ("--preset", args.preset), ("--cycle-testers", args.cycle_testers)):
+        if value:
+            options += [flag, value]
     points = [family_point(vbsim, p, options, os.path.join(args.work, "points")) for p in args.paths]
     run_points(points, args, args.work, "score_points")
     merge = [vbsim, "score", "--merge", *[p.result for p in points], "--out", args.out, "-q"]

@@ -1,7 +1,9 @@
 """Charts and breakdown points of a stability sweep (used by sweep.py).
 
-A row is one (sweep point x, method) with summed verdict counts. The error rate
-of a row is (self_hit + false_hit + missed) / scored rays. A sweep definition's
+A row is one (sweep point x, method) with the summed verdict counts of its
+secondary rays (`rays` and the verdicts) and, apart, its camera rays and the
+camera rays its tester missed. The error rate of a row is (self_hit +
+false_hit + missed) / scored secondary rays. A sweep definition's
 `hard` says which end of its parameter is the difficult one ("low" or "high");
 a method's breakdown point is the easiest value at which it makes an error.
 """
@@ -60,7 +62,7 @@ def plot_sweep(sweep, rows, path):
     ax.set_yscale("log")
     ax.set_ylim(floor / 2, 1.5)
     ax.set_xlabel(sweep["xlabel"])
-    ax.set_ylabel("errors per ray (self hit + false hit + missed)")
+    ax.set_ylabel("errors per secondary ray (self hit + false hit + missed)")
     ax.set_title(sweep["title"], fontsize=10)
     ax.grid(True, which="major", linewidth=0.4, alpha=0.5)
     ax.legend(fontsize=7, loc="best", ncol=2)
@@ -93,18 +95,22 @@ def breakdown_point(sweep, mr):
 
 def breakdown_text(sweep, rows):
     """Markdown lines: per method, where it fails and how."""
-    lines = ["| method | breakdown point | points with errors | worst rate | self_hit / false_hit / missed (all points) |",
-             "|---|---|---|---|---|"]
+    lines = ["| method | breakdown point | points with errors | worst rate | self_hit / false_hit / missed (all points) "
+             "| camera rays missed |",
+             "|---|---|---|---|---|---|"]
     for method in (m["label"] for m in sweep["methods"]):
         mr = rows_of(rows, method)
         failing = [r for r in mr if errors(r) > 0]
         totals = " / ".join(str(sum(r[k] for r in mr)) for k in ERROR_KINDS)
+        camera = (f"{sum(r.get('camera_missed', 0) for r in mr)} of "
+                  f"{sum(r.get('camera_rays', 0) for r in mr)}")
         if not failing:
             n = sum(scored(r) for r in mr)
-            lines.append(f"| {method} | holds over the whole range ({n} scored rays) | 0 of {len(mr)} | 0 | {totals} |")
+            lines.append(f"| {method} | holds over the whole range ({n} scored secondary rays) | 0 of {len(mr)} "
+                         f"| 0 | {totals} | {camera} |")
             continue
         worst = max(failing, key=error_rate)
         where = breakdown_point(sweep, mr)
         lines.append(f"| {method} | {where} | {len(failing)} of {len(mr)} | "
-                     f"{error_rate(worst):.3g} at {format_x(sweep, worst['x'])} | {totals} |")
+                     f"{error_rate(worst):.3g} at {format_x(sweep, worst['x'])} | {totals} | {camera} |")
     return lines

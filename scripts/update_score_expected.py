@@ -22,6 +22,7 @@ GEN = [
     ("paths-wuson", "paths --rays 12 --seed 11 --set scene={source}/traces/wuson/WusonOBJ.obj"),
     ("random-triangles-rtg", "random-triangles --rays 12 --seed 11"),
     ("random-triangles-pbrt", "random-triangles --rays 12 --seed 11 --set protocol=pbrt"),
+    ("random-triangles-pbrt-v4", "random-triangles --rays 12 --set protocol=pbrt-v4 --set first=11"),
     ("grazing", "grazing --rays 12 --seed 11"),
     ("shared-edges", "shared-edges --rays 12 --seed 11"),
     ("crevice", "crevice --rays 12 --seed 11"),
@@ -38,7 +39,7 @@ METHODS = ",".join([
     "validity-bit:vb-eps-mode=fixed:vb-eps=1e-4", "validity-bit:vb-policy=vote", "sign-only",
     "shading-position+offset-adaptive", "reverse-shadow",
 ])
-TESTERS = "three-half-plane,moller-trumbore"
+TESTERS = "three-half-plane,moller-trumbore,pbrt-watertight"
 
 
 def main():
@@ -67,9 +68,12 @@ def main():
         "rows": rows,
     }
     os.makedirs(os.path.dirname(OUT), exist_ok=True)
+    # One row per line: small, and a change of behaviour shows as changed rows.
+    head = json.dumps({k: v for k, v in result.items() if k != "rows"}, indent=1)[:-2]
     with open(OUT, "w") as f:
-        json.dump(result, f, indent=1)
-        f.write("\n")
+        f.write(head + ',\n "rows": [\n')
+        f.write(",\n".join("  " + json.dumps(r, separators=(",", ":")) for r in rows))
+        f.write("\n ]\n}\n")
     print(f"wrote {OUT} ({len(rows)} rows)")
 
 

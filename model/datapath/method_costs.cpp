@@ -19,12 +19,20 @@ int emission_ops(const SelfIntersectionMethod& m) {
     ops += 3 * (kNormalize + 3 + kDot + 3 + 3) + 2 + 15 + (m.shading_position ? 12 : 0);
   }
   if (m.offset_errbound) {
-    // barycentric point: w (2), 9 mul + 6 add; error: 9 abs of the same products,
-    // 6 add, 3 mul by gamma(7); geometric normal (15) and normalize; dot(|n|, e):
-    // 3 abs + dot; offset 3 mul; side: dot, compare, 3 negations; 3 add; outward
-    // rounding per component: 2 compares, an integer step, a select (4).
-    ops += 2 + 15 + 9 + 6 + 3 + kTriangleNormal + kNormalize + 3 + kDot + 3 + kDot + 1 + 3 + 3 +
-           3 * 4;
+    // pbrt-v4 (pbrt_interaction.cpp; an FMA counts as one operation, a step to
+    // the next float as two: a compare and an integer step). The barycentrics
+    // are the renderer's own: recovering them at replay is not the method's cost.
+    //   point b0 p0 + b1 p1 + b2 p2: 9 mul + 6 add; error: 9 abs, 6 add, 3 mul;
+    //   interval: 3 compares with 0, 3 sub + 3 add, 6 next-float steps;
+    //   midpoint and half width: 3 add + 3 div, 3 sub + 3 div;
+    //   normal: 6 sub, 3 differences of products (mul, 2 fma, add), normalise
+    //     (3 mul, 2 add, sqrt, 3 div);
+    //   dot(|n|, error): 3 abs + a pbrt dot (mul, 3 fma, add); offset: 3 mul;
+    //   side: a pbrt dot, compare, 3 negations; 3 add; rounding outward: per
+    //   component 2 compares and a next-float step.
+    constexpr int kPbrtDot = 5;
+    ops += (9 + 6) + (9 + 6 + 3) + (3 + 3 + 3 + 6 * 2) + (3 + 3 + 3 + 3) + (6 + 3 * 4 + 9) + (3 + kPbrtDot) + 3 +
+           (kPbrtDot + 1 + 3) + 3 + 3 * (2 + 2);
   }
   if (m.offset_adaptive) {
     // Listing 6-1: unit_on_side, then per component: mul, float->int, sign

@@ -29,13 +29,7 @@ bool parse_tester(const std::string& name, TesterKind& out);
 class ThreeHalfPlaneTester {
  public:
   explicit ThreeHalfPlaneTester(const Ray& ray);
-  bool intersect(const Triangle& tri, float tmax, Hit& hit) const { return test<false>(tri, tmax, hit); }
-
- protected:
-  /// The test; with kConservativeT, also pbrt-v4's check that t exceeds the
-  /// bound of its own rounding error (PbrtWatertightTester).
-  template <bool kConservativeT>
-  bool test(const Triangle& tri, float tmax, Hit& hit) const;
+  bool intersect(const Triangle& tri, float tmax, Hit& hit) const;
 
  private:
   Vec3f o_;
@@ -44,14 +38,36 @@ class ThreeHalfPlaneTester {
   float sx_, sy_, sz_;
 };
 
-/// pbrt-v4's triangle test: the same watertight evaluation, plus its
-/// conservative check that the computed t is larger than a bound of its own
-/// rounding error (t <= deltaT is no hit), which pbrt's error-bound origin offset
-/// relies on. Same front bit and barycentrics as ThreeHalfPlaneTester.
-class PbrtWatertightTester : public ThreeHalfPlaneTester {
+/// What pbrt-v4's IntersectTriangle returns: barycentrics b0, b1, b2 (weights
+/// of v0, v1, v2, each e_i / det computed as e_i * (1 / det)) and t; front as
+/// in Hit (the side pbrt's det sign tells, which pbrt itself does not report).
+struct PbrtTriangleHit {
+  float b0 = 0, b1 = 0, b2 = 0, t = 0;
+  bool front = false;
+};
+
+/// pbrt-v4's triangle test (shapes.cpp IntersectTriangle) in its own float32
+/// arithmetic: the same watertight sheared evaluation, but with the edge
+/// functions as FMA differences of products, no axis swap, t and the
+/// barycentrics multiplied by 1 / det, and its conservative check that t
+/// exceeds a bound of its own rounding error (t <= deltaT is no hit), which
+/// pbrt's error-bound origin offset relies on. docs/testers.md lists what the
+/// contract adds on top (open interval, tmin).
+class PbrtWatertightTester {
  public:
-  explicit PbrtWatertightTester(const Ray& ray) : ThreeHalfPlaneTester(ray) {}
-  bool intersect(const Triangle& tri, float tmax, Hit& hit) const { return test<true>(tri, tmax, hit); }
+  explicit PbrtWatertightTester(const Ray& ray);
+  /// The tester contract above: pbrt's answer, kept only when tmin < t < tmax.
+  bool intersect(const Triangle& tri, float tmax, Hit& hit) const;
+  /// pbrt-v4's IntersectTriangle(ray, tmax, v0, v1, v2) as it is (no tmin,
+  /// t <= tmax allowed); false also where pbrt would return a NaN t.
+  bool intersect_triangle(const Triangle& tri, float tmax, PbrtTriangleHit& out) const;
+
+ private:
+  Vec3f o_;
+  float tmin_;
+  int kx_, ky_, kz_;
+  float sx_, sy_, sz_;
+  bool dz_negative_;  ///< d[kz] < 0: front is det > 0 exactly then (see the .cpp)
 };
 
 /// Möller–Trumbore (1997) in float32, as the renderer blog writes it, without

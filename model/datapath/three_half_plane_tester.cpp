@@ -19,42 +19,12 @@
 // because (kx, ky, kz) is a cyclic (det +1) order unless d[kz] < 0, where the swap
 // makes det(perm) = -1. Hence det > 0  <=>  dot(d, Ng) < 0  <=>  front = 1.
 // (Checked against an independent dot(d, Ng) in three_half_plane_tester_test.cpp.)
-#include <algorithm>
 #include <cmath>
 #include <utility>
 
 #include "datapath/testers.h"
 
 namespace vbsim {
-
-namespace {
-
-/// gamma(n) = n u / (1 - n u), u = 2^-24: the relative bound of n roundings.
-constexpr float gamma(int n) {
-  constexpr float u = 0.5f * 1.1920928955078125e-7f;
-  return (n * u) / (1 - n * u);
-}
-
-float max3(float a, float b, float c) { return std::max(std::fabs(a), std::max(std::fabs(b), std::fabs(c))); }
-
-/// A bound of the rounding error of t = T / det computed from the sheared
-/// vertices (x, y, z in ray space) and the edge functions, as pbrt-v4 derives
-/// it: errors of the sheared z (3 roundings), of x and y (5), of the edge
-/// functions, then of T and of the division.
-float t_error_bound(float ax, float ay, float az, float bx, float by, float bz, float cx, float cy,
-                    float cz, float e_u, float e_v, float e_w, float det) {
-  const float max_z = max3(az, bz, cz);
-  const float max_x = max3(ax, bx, cx);
-  const float max_y = max3(ay, by, cy);
-  const float delta_z = gamma(3) * max_z;
-  const float delta_x = gamma(5) * (max_x + max_z);
-  const float delta_y = gamma(5) * (max_y + max_z);
-  const float delta_e = 2 * (gamma(2) * max_x * max_y + delta_y * max_x + delta_x * max_y);
-  const float max_e = max3(e_u, e_v, e_w);
-  return 3 * (gamma(3) * max_e * max_z + delta_e * max_z + delta_z * max_e) * std::fabs(1.0f / det);
-}
-
-}  // namespace
 
 ThreeHalfPlaneTester::ThreeHalfPlaneTester(const Ray& ray) : o_(ray.o), tmin_(ray.tmin) {
   kz_ = max_dimension(ray.d);
@@ -66,8 +36,7 @@ ThreeHalfPlaneTester::ThreeHalfPlaneTester(const Ray& ray) : o_(ray.o), tmin_(ra
   sz_ = 1.0f / ray.d[kz_];
 }
 
-template <bool kConservativeT>
-bool ThreeHalfPlaneTester::test(const Triangle& tri, float tmax, Hit& hit) const {
+bool ThreeHalfPlaneTester::intersect(const Triangle& tri, float tmax, Hit& hit) const {
   // Vertices relative to the ray origin, then sheared so that d becomes +z.
   // (Plain arrays: indexing them by kx/ky/kz is a load, not a chain of selects.)
   const float a[3] = {tri.v0.x - o_.x, tri.v0.y - o_.y, tri.v0.z - o_.z};
@@ -116,8 +85,6 @@ bool ThreeHalfPlaneTester::test(const Triangle& tri, float tmax, Hit& hit) const
   // The scaled test is the early out; the t reported must itself obey the open
   // interval, so a closest-hit search never takes a hit at its current tmax.
   if (!(t > tmin_ && t < tmax)) return false;
-  if (kConservativeT && !(t > t_error_bound(ax, ay, az, bx, by, bz, cx, cy, cz, e_u, e_v, e_w, det)))
-    return false;
 
   hit.t = t;
   hit.u = e_v / det;
@@ -125,8 +92,5 @@ bool ThreeHalfPlaneTester::test(const Triangle& tri, float tmax, Hit& hit) const
   hit.front = det > 0.0f ? 1 : 0;
   return true;
 }
-
-template bool ThreeHalfPlaneTester::test<false>(const Triangle&, float, Hit&) const;
-template bool ThreeHalfPlaneTester::test<true>(const Triangle&, float, Hit&) const;
 
 }  // namespace vbsim

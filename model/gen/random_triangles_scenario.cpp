@@ -6,6 +6,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "gen/pbrt_reintersect.h"
 #include "gen/scenario_trace_builder.h"
 #include "gen/seeded_random.h"
 
@@ -96,12 +97,47 @@ std::optional<ScenarioTraceBuilder> pbrt_trial(const PbrtParams& p, HitPointRule
   return out;
 }
 
+/// pbrt-v4's own protocol: one case per triangle index that is not degenerate;
+/// a skipped triangle (camera miss) keeps its camera ray, without children.
+std::vector<ScenarioCase> pbrt_v4_cases(const ScenarioSettings& s) {
+  const int64_t children = s.integer("children", 8);
+  const int64_t first = s.integer("first", 0);
+  const double exp = s.number("exp", 8);
+  require_setting_range("children", static_cast<double>(children), 0, 1000000);
+  require_setting_range("first", static_cast<double>(first), 0, 1e15);
+  require_setting_range("exp", exp, 0, 30);
+  std::vector<PbrtReintersectTrial> trials;
+  int64_t degenerate = 0, skipped = 0;
+  for (int64_t k = 0; k < s.rays(); ++k) {
+    trials.push_back(pbrt_reintersect_trial(static_cast<uint64_t>(first + k), children, static_cast<float>(exp)));
+    degenerate += trials.back().degenerate;
+    skipped += !trials.back().degenerate && !trials.back().camera_hit;
+  }
+  std::vector<ScenarioCase> cases;
+  for (PbrtReintersectTrial& t : trials) {
+    if (t.degenerate) continue;
+    ScenarioCase c;
+    c.name = fmt::format("pbrt-v4-{:07d}", t.index);
+    c.description = fmt::format(
+        "random-triangles protocol=pbrt-v4: pbrt-v4's Triangle Reintersect trial RNG({}), {} SpawnRay and {} "
+        "SpawnRayTo children{}; of the {} triangles from RNG({}), {} were dropped as degenerate and {} skipped "
+        "because pbrt's test missed their camera ray",
+        t.index, t.camera_hit ? children : 0, t.camera_hit ? children : 0,
+        t.camera_hit ? "" : " (skipped: pbrt's test missed the camera ray)", s.rays(), first, degenerate, skipped);
+    c.triangles = {t.tri};
+    c.rays = std::move(t.rays);
+    cases.push_back(std::move(c));
+  }
+  return cases;
+}
+
 }  // namespace
 
 std::vector<ScenarioCase> generate_random_triangles_scenario(const ScenarioSettings& s) {
   const std::string protocol = s.text("protocol", "rtg");
+  if (protocol == "pbrt-v4") return pbrt_v4_cases(s);
   if (protocol != "rtg" && protocol != "pbrt")
-    throw std::runtime_error(fmt::format("option '--set protocol={}': expected rtg or pbrt", protocol));
+    throw std::runtime_error(fmt::format("option '--set protocol={}': expected rtg, pbrt or pbrt-v4", protocol));
   const bool rtg = protocol == "rtg";
   const HitPointRule rule = read_hit_point_rule(s, HitPointRule::Barycentric);
   RtgParams rp{};

@@ -76,7 +76,7 @@ void ScenarioSettings::check_all_read(const std::string& scenario) const {
 const std::vector<Scenario>& scenarios() {
   static const std::vector<Scenario> all = {
       {"paths", "multi-bounce camera paths over a mesh (set scene=FILE, depth=N, ior=X, hitpoint=ray|barycentric|both)", generate_paths_scenario},
-      {"random-triangles", "isolated random triangles, Ray Tracing Gems Figure 6-7 or pbrt-v4 Reintersect (set protocol=rtg|pbrt)", generate_random_triangles_scenario},
+      {"random-triangles", "isolated random triangles, Ray Tracing Gems Figure 6-7, pbrt-v4 Reintersect with random signs, or pbrt-v4 Reintersect as pbrt-v4 runs it (set protocol=rtg|pbrt|pbrt-v4)", generate_random_triangles_scenario},
       {"grazing", "children leaving a tessellated plane, cylinder or bowl at 1e-6 rad to 10 degrees", generate_grazing_scenario},
       {"shared-edges", "spawn points ulps from shared edges of flat, convex and concave sheets, grazing children", generate_shared_edges_scenario},
       {"crevice", "concave wedges of 1 to 90 degrees, spawn points near the crease", generate_crevice_scenario},

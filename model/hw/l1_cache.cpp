@@ -2,19 +2,10 @@
 
 #include <algorithm>
 
+#include "hw/cache_level_stats.h"
 #include "hw/l2_cache_inline.h"
 
 namespace vbsim::hw {
-
-namespace {
-
-uint32_t log2_of(uint32_t power_of_two) {
-  uint32_t s = 0;
-  while ((uint32_t{1} << s) < power_of_two) ++s;
-  return s;
-}
-
-}  // namespace
 
 L1Cache::L1Cache(sc_core::sc_module_name name, const CacheConfig& config, uint32_t core, uint32_t first_slot,
                  uint32_t slots)
@@ -25,20 +16,7 @@ L1Cache::L1Cache(sc_core::sc_module_name name, const CacheConfig& config, uint32
   fill_target.bind(*this);
   declare_stat("reads", "reads", "reads by the core (a node, a leaf's triangles, a stack refill)", reads_);
   declare_stat("bytes", "bytes", "bytes the core read", bytes_);
-  declare_stat("accesses", "lines", "line lookups (every line a read spans)", [this] { return counters().accesses; });
-  declare_stat("hits", "lines", "lookups that found their line filled", [this] { return counters().hits; });
-  declare_stat("merges", "lines", "lookups that met their line's miss in flight and waited for its fill",
-               [this] { return counters().merges; });
-  declare_stat("misses", "lines", "lookups sent on to the L2", [this] { return counters().misses; });
-  declare_stat("mshr_stall_cycles", "cycles", "cycles misses waited for a free MSHR",
-               [this] { return counters().mshr_stall_cycles; });
-  declare_stat("misses_sent_late", "lines",
-               "misses that waited for an MSHR whose fill was not yet known (approximately timed memory)",
-               misses_sent_late_);
-  declare_stat("hit_rate", "ratio", "hits / accesses", [this] {
-    const LevelCounters c = counters();
-    return c.accesses ? static_cast<double>(c.hits) / static_cast<double>(c.accesses) : 0.0;
-  });
+  declare_stats(cache_level_statistics(level_, "the L2", misses_sent_late_));
 }
 
 void L1Cache::connect_fast(L2Cache* l2) {

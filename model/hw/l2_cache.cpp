@@ -6,19 +6,10 @@
 
 #include <fmt/format.h>
 
+#include "hw/cache_level_stats.h"
 #include "hw/l2_cache_inline.h"
 
 namespace vbsim::hw {
-
-namespace {
-
-uint32_t log2_of(uint32_t power_of_two) {
-  uint32_t s = 0;
-  while ((uint32_t{1} << s) < power_of_two) ++s;
-  return s;
-}
-
-}  // namespace
 
 L2Cache::L2Cache(sc_core::sc_module_name name, const CacheConfig& config, const CycleClock& clock, TlmStyle style,
                  uint32_t lookahead_cycles)
@@ -28,24 +19,11 @@ L2Cache::L2Cache(sc_core::sc_module_name name, const CacheConfig& config, const 
   target.bind(*this);
   socket.bind(*this);
   prepare(lt_payload_, 0);
-  declare_stat("accesses", "lines", "line requests from the L1s", [this] { return counters().accesses; });
-  declare_stat("hits", "lines", "requests that found their line filled", [this] { return counters().hits; });
-  declare_stat("merges", "lines", "requests that met their line's miss in flight (another L1's, or a re-request)",
-               [this] { return counters().merges; });
-  declare_stat("misses", "lines", "requests sent on to DRAM", [this] { return counters().misses; });
-  declare_stat("mshr_stall_cycles", "cycles", "cycles misses waited for a free MSHR",
-               [this] { return counters().mshr_stall_cycles; });
   declare_stat("dram_requests", "transactions", "TLM-2.0 read transactions sent through the socket", dram_requests_);
   declare_stat("late_responses", "transactions",
                "approximately timed responses that arrived for a cycle already handled (taken one cycle later)",
                late_responses_);
-  declare_stat("misses_sent_late", "lines",
-               "misses that waited for an MSHR whose fill was not yet known (approximately timed memory)",
-               misses_sent_late_);
-  declare_stat("hit_rate", "ratio", "hits / accesses", [this] {
-    const LevelCounters c = counters();
-    return c.accesses ? static_cast<double>(c.hits) / static_cast<double>(c.accesses) : 0.0;
-  });
+  declare_stats(cache_level_statistics(level_, "DRAM", misses_sent_late_));
 }
 
 L2Cache::~L2Cache() {

@@ -21,14 +21,22 @@ uint32_t emission_ops(const SelfIntersectionMethod& m, const TraceRay& tr) {
   return ops;
 }
 
-bool same_origin(const TraceRay& a, const TraceRay& b) { return std::memcmp(&a.o, &b.o, sizeof a.o) == 0; }
+bool same_origin(const Vec3f& a, const Vec3f& b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+/// The smallest power of two at least 2 x window: the ring's places are then a mask, not a division.
+uint32_t ring_capacity(uint32_t window) {
+  uint32_t c = 2;
+  while (c < 2 * uint64_t{window}) c *= 2;
+  return c;
+}
 
 }  // namespace
 
 RaySource::RaySource(sc_core::sc_module_name name, const HwConfig& config, FunctionalReplayer& replayer)
     : sc_core::sc_module(name), config_(config.source), latency_(config.shader.latency_cycles), replayer_(replayer),
       lanes_count_(std::max<uint32_t>(1, config.source.rays_per_cycle)),
-      window_(std::max<uint32_t>(1, config.source.window)), capacity_(2 * window_), lanes_(lanes_count_) {
+      window_(std::max<uint32_t>(1, config.source.window)), capacity_(ring_capacity(window_)), lanes_(lanes_count_),
+      position_of_(capacity_), ready_(window_) {
   ring_.reserve(std::min<uint32_t>(capacity_, 4096));
   const SourceCounters& c = counters_;
   const EmissionCounters& e = emission_;
@@ -87,32 +95,42 @@ uint64_t RaySource::emission_cycles(const TraceRay& tr) {
 void RaySource::start(SourceHost& host, uint64_t at) {
   host_ = &host;
   for (Lane& l : lanes_) l.idle_since = at;
-  fill(at);
   start_idle_lanes(at);
 }
 
-void RaySource::fill(uint64_t now) {
-  while (!ended_ && next_ < base_ + window_) {
-    if (ring_.size() < capacity_ && next_ == ring_.size()) ring_.emplace_back();  // grows to its capacity as rays come
-    Entry& e = at_pos(next_);
-    if (next_ >= capacity_) {  // the place's previous ray left the history: forget its id
-      const auto it = position_of_.find(e.ray.tr.id);
-      if (it != position_of_.end() && it->second == next_ - capacity_) position_of_.erase(it);
-    }
-    if (!feed_ || !feed_(e.ray.tr)) {
-      ended_ = true;
-      break;
-    }
-    enter(next_, now);
-    ++next_;
+bool RaySource::read_one(uint64_t now) {
+  if (ended_ || next_ >= base_ + window_) return false;
+  if (ring_.size() < capacity_ && next_ == ring_.size()) ring_.emplace_back();  // grows to its capacity as rays come
+  Entry& e = at_pos(next_);
+  if (!ids_dense_ && next_ >= capacity_) position_of_.erase(e.id, next_ - capacity_);  // its previous ray left the history
+  if (free_staged_.empty()) {
+    free_staged_.push_back(static_cast<uint32_t>(staged_.size()));
+    staged_.emplace_back();
+  }
+  const uint32_t place = free_staged_.back();
+  if (!feed_ || !feed_(staged_[place].tr)) {
+    ended_ = true;
+    return false;
+  }
+  free_staged_.pop_back();
+  e.staged = place;
+  enter(next_, now);
+  ++next_;
+  return true;
+}
+
+void RaySource::fill_until_ready(uint64_t now) {
+  while (ready_.empty() && read_one(now)) {
   }
 }
 
 void RaySource::enter(uint64_t pos, uint64_t now) {
   Entry& e = at_pos(pos);
-  const TraceRay& tr = e.ray.tr;
-  e.ray.index = pos;
-  e.ray.er = replayer_.emit(tr);  // in trace order: a parent before its children
+  SourceRay& ray = record(e);
+  const TraceRay& tr = ray.tr;
+  ray.index = e.index = pos;
+  e.id = tr.id;
+  ray.er = replayer_.emit(tr);  // in trace order: a parent before its children
   e.entered = now;
   e.first_child = e.next_sibling = kNone;
   e.state = State::Ready;
@@ -121,50 +139,68 @@ void RaySource::enter(uint64_t pos, uint64_t now) {
   uint64_t ready = now;
   bool waits = false;
   if (config_.dependencies) {
-    const auto child = unresolved_.find(tr.id);
+    const auto child = unresolved_.empty() ? unresolved_.end() : unresolved_.find(tr.id);
     if (child != unresolved_.end() && child->second >= history) {
       const std::string what = fmt::format(
           "ray {} is the parent of ray {} (trace position {}), which comes before it: a trace replayed with "
           "dependencies lists every parent before its children (--deps off replays it as independent rays)",
-          tr.id, at_pos(child->second).ray.tr.id, child->second);
+          tr.id, at_pos(child->second).id, child->second);
       throw std::runtime_error(locate_ ? locate_("id", what) : fmt::format("trace position {}: {}", pos, what));
     }
     if (tr.parent >= 0) {
-      const auto it = position_of_.find(tr.parent);
-      if (it == position_of_.end() || it->second < history) {
+      uint64_t parent_pos = 0;
+      if (!find_position(tr.parent, parent_pos) || parent_pos < history) {
         ++emission_.parents_not_found;
         if (unresolved_.size() > 4 * size_t{window_})  // forget the children too far behind to matter
           for (auto u = unresolved_.begin(); u != unresolved_.end();)
             u = u->second < history ? unresolved_.erase(u) : std::next(u);
         unresolved_.emplace(tr.parent, pos);
       } else {
-        Entry& parent = at_pos(it->second);
+        Entry& parent = at_pos(parent_pos);
         if (parent.state != State::Finished || parent.finish + latency_ > now) {
           // Ready with the parent's other children, when its result has been shaded.
           waits = true;
           e.state = State::Waiting;
           ++waiting_count_;
           e.next_sibling = parent.first_child;
-          parent.first_child = static_cast<uint32_t>(pos % capacity_);
+          parent.first_child = place_of(pos);
           ++emission_.children_waited;
           if (parent.state == State::Finished && !parent.event_pending) {
             parent.event_pending = true;
-            host_->schedule_source_event(lanes_count_ + static_cast<uint32_t>(it->second % capacity_),
-                                         parent.finish + latency_);
+            host_->schedule_source_event(lanes_count_ + place_of(parent_pos), parent.finish + latency_);
           }
         }
       }
     }
   }
-  position_of_[tr.id] = pos;
+  note_position(tr.id, pos);
   if (!waits) make_ready(pos, ready);
+}
+
+bool RaySource::find_position(int64_t id, uint64_t& pos) const {
+  if (!ids_dense_) return position_of_.find(id, pos);
+  const uint64_t p = static_cast<uint64_t>(id) - static_cast<uint64_t>(first_id_);  // an id below the first wraps high
+  if (p >= next_ || p + capacity_ < next_) return false;  // not read yet, or left the history
+  pos = p;
+  return true;
+}
+
+void RaySource::note_position(int64_t id, uint64_t pos) {
+  if (ids_dense_) {
+    if (pos == 0) first_id_ = id;
+    if (static_cast<uint64_t>(id) - static_cast<uint64_t>(first_id_) == pos) return;
+    // The first id off the sequence: the table takes over the rays still known.
+    ids_dense_ = false;
+    for (uint64_t p = pos >= capacity_ ? pos - capacity_ + 1 : 0; p < pos; ++p) position_of_.set(at_pos(p).id, p);
+  }
+  position_of_.set(id, pos);
 }
 
 void RaySource::make_ready(uint64_t pos, uint64_t cycle) {
   Entry& e = at_pos(pos);
   if (e.state == State::Waiting) --waiting_count_;
   e.state = State::Ready;
-  e.ray.ready = cycle;
+  record(e).ready = cycle;
   emission_.dependency_wait_cycles += cycle - e.entered;
   ready_.push(pos);
 }
@@ -188,7 +224,7 @@ void RaySource::on_event(uint32_t id, uint64_t at) {
   for (uint32_t c = parent.first_child; c != kNone;) {
     Entry& child = ring_[c];
     c = child.next_sibling;
-    make_ready(child.ray.index, at);
+    make_ready(child.index, at);
   }
   parent.first_child = kNone;
   start_idle_lanes(at);
@@ -200,14 +236,11 @@ void RaySource::on_finish(uint64_t index, uint64_t at) {
   e.finish = at;
   if (e.first_child != kNone && !e.event_pending) {
     e.event_pending = true;
-    host_->schedule_source_event(lanes_count_ + static_cast<uint32_t>(index % capacity_), at + latency_);
+    host_->schedule_source_event(lanes_count_ + place_of(index), at + latency_);
   }
   const uint64_t old_base = base_;
   while (base_ < next_ && at_pos(base_).state == State::Finished) ++base_;
-  if (base_ != old_base) {
-    fill(at);
-    start_idle_lanes(at);
-  }
+  if (base_ != old_base) start_idle_lanes(at);  // the window moved: idle lanes may read further
 }
 
 void RaySource::on_slot_free(uint64_t at) {
@@ -224,36 +257,44 @@ bool RaySource::send(uint32_t lane_id, uint64_t now) {
   Lane& lane = lanes_[lane_id];
   while (lane.sent < lane.count) {
     Entry& e = at_pos(lane.first + lane.sent);
-    if (!host_->try_dispatch(e.ray, now)) return false;
+    if (!host_->try_dispatch(record(e), now)) return false;
     e.state = State::InFlight;
+    free_staged_.push_back(e.staged);  // the slot holds its own copy now
+    e.staged = kNone;
     ++lane.sent;
   }
   return true;
 }
 
 void RaySource::start_idle_lanes(uint64_t now) {
-  for (uint32_t l = 0; l < lanes_count_ && !ready_.empty(); ++l) {
+  for (uint32_t l = 0; l < lanes_count_; ++l) {
     Lane& lane = lanes_[l];
     if (lane.emitting || lane.sent < lane.count) continue;  // busy or holding
     try_start(l, now);
+    if (!lanes_[l].emitting) return;  // nothing more to emit now
   }
 }
 
 void RaySource::try_start(uint32_t lane_id, uint64_t now) {
   Lane& lane = lanes_[lane_id];
+  fill_until_ready(now);  // reads ahead only as far as the first ready ray
   if (ready_.empty()) return go_idle(lane_id, now);
-  if (lane.idle == Idle::Dependency) emission_.lane_idle_dependency_cycles += now - lane.idle_since;
-  if (lane.idle == Idle::Window) emission_.lane_idle_window_cycles += now - lane.idle_since;
+  account_idle(lane, now);
   lane.idle = Idle::None;
   const uint64_t first = ready_.top();
   ready_.pop();
-  const TraceRay& head = at_pos(first).ray.tr;
+  const TraceRay& head = record(at_pos(first)).tr;
   uint64_t cost = emission_cycles(head);
+  // Copies: reading further may move the staged records.
+  const int64_t head_parent = head.parent;
+  const Vec3f head_origin = head.o;
   uint32_t count = 1;
   if (config_.bundles) {
-    while (count < config_.bundle_max && !ready_.empty() && ready_.top() == first + count) {
-      const TraceRay& next = at_pos(first + count).ray.tr;
-      if (next.parent < 0 || next.parent != head.parent || !same_origin(next, head)) break;
+    while (count < config_.bundle_max) {
+      if (next_ == first + count) read_one(now);  // the bundle may go on in the rays not read yet
+      if (ready_.empty() || ready_.top() != first + count) break;
+      const TraceRay& next = record(at_pos(first + count)).tr;
+      if (next.parent < 0 || next.parent != head_parent || !same_origin(next.o, head_origin)) break;
       ready_.pop();
       cost += emission_cycles(next);
       ++count;
@@ -267,7 +308,7 @@ void RaySource::try_start(uint32_t lane_id, uint64_t now) {
   for (uint32_t k = 0; k < count; ++k) {
     Entry& e = at_pos(first + k);
     e.state = State::Emitting;
-    e.ray.emitted = now;
+    record(e).emitted = now;
   }
   counters_.busy_cycles += cost;
   lane.emitting = true;
@@ -277,9 +318,16 @@ void RaySource::try_start(uint32_t lane_id, uint64_t now) {
   host_->schedule_source_event(lane_id, now + cost);
 }
 
+void RaySource::account_idle(Lane& lane, uint64_t now) {
+  if (lane.idle == Idle::Dependency) emission_.lane_idle_dependency_cycles += now - lane.idle_since;
+  if (lane.idle == Idle::Window) emission_.lane_idle_window_cycles += now - lane.idle_since;
+  lane.idle_since = now;
+}
+
 void RaySource::go_idle(uint32_t lane_id, uint64_t now) {
   Lane& lane = lanes_[lane_id];
   lane.count = lane.sent = 0;
+  account_idle(lane, now);  // a lane idle already: its time so far, under the reason it had
   lane.idle = waiting_count_ ? Idle::Dependency : ended_ ? Idle::End : Idle::Window;
   lane.idle_since = now;
 }

@@ -2,7 +2,8 @@
 // dispatcher, with its ray-emission buffer.
 //
 // Buffer. The source reads trace rays in order into a buffer that looks ahead
-// at most `source.window` rays beyond the oldest unfinished one, and runs each
+// at most `source.window` rays beyond the oldest unfinished one (and only as
+// far as it must: until it has a ray ready to emit), and runs each
 // through the datapath's emission step as it enters (FunctionalReplayer::emit:
 // the origin, emission-time methods, the parent sign bit when the trace lacks
 // it; in trace order, so parents are emitted before their children).
@@ -30,7 +31,6 @@
 #include <cstdint>
 #include <deque>
 #include <functional>
-#include <queue>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -39,7 +39,9 @@
 
 #include "hw/hw_config.h"
 #include "hw/hw_counters.h"
+#include "hw/id_position_map.h"
 #include "hw/ray_feed.h"
+#include "hw/ready_queue.h"
 #include "hw/stat_provider.h"
 #include "replay/functional_replayer.h"
 
@@ -107,11 +109,16 @@ class RaySource final : public sc_core::sc_module, public StatProvider {
  private:
   enum class State : uint8_t { Waiting, Ready, Emitting, Held, InFlight, Finished };
   static constexpr uint32_t kNone = ~uint32_t{0};
+  /// A ray the source knows: in the buffer, in flight, or finished and kept
+  /// as a possible parent. Small, so that the ring stays in the host's caches;
+  /// the ray record itself is staged (below) only until it is dispatched.
   struct Entry {
-    SourceRay ray;
-    State state = State::Finished;
+    int64_t id = 0;
+    uint64_t index = 0;  ///< its trace position
     uint64_t entered = 0, finish = 0;
     uint32_t first_child = kNone, next_sibling = kNone;  ///< ring places of children waiting for this ray
+    uint32_t staged = kNone;  ///< its record in staged_ until dispatched
+    State state = State::Finished;
     bool event_pending = false;  ///< the event making its children ready is scheduled
   };
   enum class Idle : uint8_t { None, Dependency, Window, End };
@@ -124,13 +131,24 @@ class RaySource final : public sc_core::sc_module, public StatProvider {
     uint64_t idle_since = 0, held_since = 0;
   };
 
-  Entry& at_pos(uint64_t pos) { return ring_[pos % capacity_]; }
-  const Entry& at_pos(uint64_t pos) const { return ring_[pos % capacity_]; }
-  void fill(uint64_t now);
+  uint32_t place_of(uint64_t pos) const { return static_cast<uint32_t>(pos & (capacity_ - 1)); }
+  Entry& at_pos(uint64_t pos) { return ring_[place_of(pos)]; }
+  const Entry& at_pos(uint64_t pos) const { return ring_[place_of(pos)]; }
+  SourceRay& record(const Entry& e) { return staged_[e.staged]; }
+  /// Reads the next trace ray into the buffer if the window allows; false when it does not or the trace ended.
+  bool read_one(uint64_t now);
+  /// Reads until a ray is ready or nothing more can be read.
+  void fill_until_ready(uint64_t now);
   void enter(uint64_t pos, uint64_t now);
   void make_ready(uint64_t pos, uint64_t cycle);
+  /// The trace position of the ray `id` among the last capacity_ rays read, or false.
+  bool find_position(int64_t id, uint64_t& pos) const;
+  /// Records that the ray `id` is at `pos` (the next position read).
+  void note_position(int64_t id, uint64_t pos);
   void try_start(uint32_t lane, uint64_t now);
   void go_idle(uint32_t lane, uint64_t now);
+  /// Adds the lane's idle time since it went idle (or was last counted) to its reason's counter.
+  void account_idle(Lane& lane, uint64_t now);
   void start_idle_lanes(uint64_t now);
   /// Sends the lane's emitted rays to free slots; true when all went.
   bool send(uint32_t lane, uint64_t now);
@@ -143,16 +161,23 @@ class RaySource final : public sc_core::sc_module, public StatProvider {
   RayFeed feed_;
   RayLocator locate_;
   SourceHost* host_ = nullptr;
-  uint32_t lanes_count_, window_, capacity_;  // capacity: window plus as many finished rays behind it
-  std::vector<Entry> ring_;  // position p at p % capacity_; grown as positions arrive, up to capacity_
+  uint32_t lanes_count_, window_, capacity_;  // capacity: a power of two, at least the window plus as many finished rays behind it
+  std::vector<Entry> ring_;  // position p at place_of(p); grown as positions arrive, up to capacity_
+  std::vector<SourceRay> staged_;     // records of rays read and not yet dispatched
+  std::vector<uint32_t> free_staged_;  // places of staged_ free for reuse (the last freed first: warm)
   std::vector<Lane> lanes_;
   uint64_t base_ = 0;  ///< the oldest unfinished position
   uint64_t next_ = 0;  ///< the next position to read
   bool ended_ = false;
   uint64_t waiting_count_ = 0;  ///< buffered rays waiting for a parent
-  std::unordered_map<int64_t, uint64_t> position_of_;  ///< id -> position, for [base - window, next)
+  /// Ids in trace order as first_id_, first_id_ + 1, ... (the usual trace): a ray's
+  /// position is its id less first_id_. From the first id off that sequence on,
+  /// position_of_ maps id -> position for [next - capacity, next).
+  bool ids_dense_ = true;
+  int64_t first_id_ = 0;
+  IdPositionMap position_of_;
   std::unordered_map<int64_t, uint64_t> unresolved_;   ///< parent id not found -> its child's position
-  std::priority_queue<uint64_t, std::vector<uint64_t>, std::greater<uint64_t>> ready_;  ///< ready positions
+  ReadyQueue ready_;  ///< ready positions, smallest first
   std::deque<uint32_t> held_;  ///< lanes holding an emitted ray for want of a slot, oldest first
   SourceCounters counters_;
   EmissionCounters emission_;

@@ -43,6 +43,10 @@ class StatProvider {
  protected:
   /// A counter the module increments; read when the statistics are gathered.
   void declare_stat(std::string name, std::string unit, std::string description, const uint64_t& counter);
+  /// Several declarations at once (a part's own list, e.g. cache_level_statistics).
+  void declare_stats(std::vector<StatDeclaration> stats) {
+    for (StatDeclaration& s : stats) stats_.push_back(std::move(s));
+  }
   /// A value derived when the statistics are gathered.
   void declare_stat(std::string name, std::string unit, std::string description,
                     std::function<nlohmann::json()> value);

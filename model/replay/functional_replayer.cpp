@@ -19,6 +19,7 @@ RayOutcome conclude_ray(const TraceRay& tr, const EmittedRay& er, const Hit& hit
   ++ks.rays;
   ks.hits += out.answer >= 0;
   ks.emission_fallbacks += er.emission_fallback;
+  ks.offset_fallbacks += er.offset_fallback;
   if (tr.has_expect) {
     out.scored = true;
     if (verdict_needs_exact(tr, out.answer)) {  // rational numbers only when needed

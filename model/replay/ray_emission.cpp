@@ -7,6 +7,7 @@
 #include "datapath/hit_point.h"
 #include "datapath/origin_offsets.h"
 #include "datapath/shading_position.h"
+#include "datapath/testers.h"
 
 namespace vbsim {
 
@@ -36,6 +37,30 @@ Vec3f base_origin(const TraceRay& tr, const Scene& scene, HitPointMode mode,
   }
   fallback = true;
   return tr.o;
+}
+
+/// offset-errbound: pbrt-v4 spawns from the barycentrics its own triangle test
+/// found, so they are recomputed with that test from the parent ray (known when
+/// it came before the child) on the parent triangle; failing that, from
+/// parent_uv with b0 = 1 - u - v; failing that (an emission fallback), pbrt's
+/// bound gamma(7) |p| is put on the given point.
+Vec3f errbound_origin(const TraceRay& tr, const Scene& scene, const ParentRay* parent_ray, Vec3f p, Vec3f d,
+                      OffsetOutcome& outcome, bool& fallback) {
+  const Triangle& tri = scene.triangles[tr.parent_prim];
+  const std::array<Vec3f, 3>* normals = scene.has_normals() ? &scene.normals[tr.parent_prim] : nullptr;
+  if (parent_ray && tr.parent >= 0) {
+    Ray parent;
+    parent.o = parent_ray->o;
+    parent.d = parent_ray->d;
+    PbrtTriangleHit h;
+    if (PbrtWatertightTester(parent).intersect_triangle(tri, std::numeric_limits<float>::infinity(), h))
+      return offset_error_bound(p, tri, h.b0, h.b1, h.b2, normals, d, outcome);
+  }
+  if (tr.has_parent_uv)
+    return offset_error_bound(p, tri, 1.0f - tr.parent_u - tr.parent_v, tr.parent_u, tr.parent_v, normals, d,
+                              outcome);
+  fallback = true;
+  return offset_error_bound_at(p, tri, d, outcome);
 }
 
 Vec3f parent_shading_normal(const TraceRay& tr, const Scene& scene, Vec3f ng) {
@@ -87,28 +112,23 @@ EmittedRay emit_ray(const TraceRay& tr, const Scene& scene, const ReplayOptions&
     const Triangle& tri = scene.triangles[tr.parent_prim];
     const Vec3f ng = geometric_normal(tri);
     const bool shadow = tr.kind == RayKind::Shadow;
+    OffsetOutcome outcome = OffsetOutcome::Reference;
     if (shadow && (m.shading_position || m.shading_position_always)) {
-      if (scene.has_normals() && tr.has_parent_uv)
-        p = shading_position(p, tri, scene.normals[tr.parent_prim], tr.parent_u, tr.parent_v,
-                             parent_shading_normal(tr, scene, ng), !m.shading_position_always);
-      else
+      if (scene.has_normals() && tr.has_parent_uv) {
+        const Vec3f s = shading_position(p, tri, scene.normals[tr.parent_prim], tr.parent_u, tr.parent_v,
+                                         parent_shading_normal(tr, scene, ng), !m.shading_position_always);
+        if (is_finite(s)) p = s;
+        else outcome = OffsetOutcome::NotOffset;  // a vertex normal of zero length
+      } else {
         out.emission_fallback = true;  // needs vertex normals and parent_uv
-    }
-    if (m.offset_errbound) {
-      // pbrt bounds the error of its own barycentric point; without parent_uv
-      // the bound is applied to the given point as if it were one.
-      BoundedPoint bp = tr.has_parent_uv ? barycentric_point_with_error(tri, tr.parent_u, tr.parent_v)
-                                         : BoundedPoint{p, {}};
-      if (!tr.has_parent_uv) {
-        out.emission_fallback = true;
-        bp.error = (7.0f * 5.9604645e-8f) * abs(p);
       }
-      p = offset_error_bound(bp, ng, r.d);
     }
-    if (m.offset_adaptive) p = offset_adaptive(p, ng, r.d, m.adaptive);
+    if (m.offset_errbound) p = errbound_origin(tr, scene, parent, p, r.d, outcome, out.emission_fallback);
+    if (m.offset_adaptive) p = offset_adaptive(p, tri, r.d, m.adaptive, outcome);
     if (m.offset_normal)
-      p = offset_along_normal(p, parent_shading_normal(tr, scene, ng), r.d, m.offset_normal_eps);
+      p = offset_along_normal(p, parent_shading_normal(tr, scene, ng), tri, r.d, m.offset_normal_eps, outcome);
     if (m.offset_direction) p = offset_along_direction(p, r.d, m.offset_direction_eps);
+    out.offset_fallback = outcome != OffsetOutcome::Reference;
   }
   r.o = p;
   if (m.tmin) r.tmin = std::max(r.tmin, m.tmin_eps / length(r.d));

@@ -21,6 +21,10 @@ struct EmittedRay {
   /// The parent ray emission was given (absent: not in the trace before this
   /// ray); the verdict's intended origin uses it again after the search.
   std::optional<ParentRay> parent;
+  /// An offset or shading position could not follow its reference's float
+  /// arithmetic (a degenerate normal; origin_offsets.h): it took the double
+  /// normal or left the origin as it was.
+  bool offset_fallback = false;
 };
 
 /// Parent sign bit of the trace spec: the given `sign`, else dot(d, Ng(parent_prim)) < 0

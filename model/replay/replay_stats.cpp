@@ -45,6 +45,7 @@ void KindStats::add(const KindStats& o) {
   hits += o.hits;
   for (int v = 0; v < kVerdictCount; ++v) verdicts[v] += o.verdicts[v];
   emission_fallbacks += o.emission_fallbacks;
+  offset_fallbacks += o.offset_fallbacks;
   candidates.add(o.candidates);
   traversal.add(o.traversal);
 }
@@ -76,6 +77,7 @@ nlohmann::json ReplayStats::to_json(const nlohmann::json& config) const {
   j["hits"] = t.hits;
   j["verdicts"] = verdicts_json(t);
   j["emission_fallbacks"] = t.emission_fallbacks;
+  j["offset_fallbacks"] = t.offset_fallbacks;
   nlohmann::json kinds = nlohmann::json::object();
   for (int k = 0; k < kRayKindCount; ++k) {
     const KindStats& s = by_kind[k];

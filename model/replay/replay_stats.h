@@ -21,6 +21,7 @@ struct KindStats {
   uint64_t hits = 0;                        ///< rays that returned a hit (shadow: occluded)
   std::array<uint64_t, kVerdictCount> verdicts{};
   uint64_t emission_fallbacks = 0;  ///< rays where an emission step lacked parent data
+  uint64_t offset_fallbacks = 0;    ///< rays an offset placed off its reference (degenerate normal)
   CandidateCounters candidates;
   TraversalCounters traversal;
 

@@ -134,3 +134,13 @@ const std::vector<std::string>& default_score_methods() {
 }
 
 }  // namespace vbsim
+
+namespace vbsim {
+
+std::string default_score_method_list() {
+  std::string s;
+  for (const std::string& m : default_score_methods()) s += (s.empty() ? "" : ",") + m;
+  return s;
+}
+
+}  // namespace vbsim

@@ -34,8 +34,11 @@ MethodSpec parse_method_spec(const std::string& entry);
 /// Parses a ','-separated list of entries (empty entries are errors).
 std::vector<MethodSpec> parse_method_list(const std::string& list);
 
+
 /// The methods `vbsim score` compares when no list is given: every method and
 /// the compositions and parameter variants renderers and the patent use.
 const std::vector<std::string>& default_score_methods();
+/// The same joined by ',', as --methods takes them.
+std::string default_score_method_list();
 
 }  // namespace vbsim

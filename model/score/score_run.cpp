@@ -10,6 +10,7 @@
 #include "replay/functional_replayer.h"
 #include "replay/ray_conservation.h"
 #include "replay/replay_run.h"
+#include "score/cycle_cost.h"
 #include "score/parallel_for.h"
 #include "score/trace_blocks.h"
 #include "trace/trace_file.h"
@@ -28,18 +29,30 @@ bool is_trace_file(const fs::path& p) {
   return fs::is_regular_file(p) && (ext == ".jsonl" || ext == ".vbt");
 }
 
+bool same_verdicts(const ReplayStats& a, const ReplayStats& b) {
+  for (int k = 0; k < kRayKindCount; ++k)
+    if (a.by_kind[k].rays != b.by_kind[k].rays || a.by_kind[k].verdicts != b.by_kind[k].verdicts) return false;
+  return true;
+}
+
+bool measures_cycles(const ScoreRunOptions& run, const ScoreConfig& c) {
+  return run.cycle && std::find(run.cycle_testers.begin(), run.cycle_testers.end(), c.options.tester) !=
+                          run.cycle_testers.end();
+}
+
 /// Replays one trace with every configuration, adding into cells[0..configs).
+/// Cycle mode reads the whole trace first, so that the cycle-level replays
+/// see exactly the rays the functional replays saw.
 void score_trace(const std::string& path, const std::vector<ScoreConfig>& configs,
-                 std::vector<CandidateFilter>& filters, ScoreCell* cells, int threads,
-                 const ScoreProgress& progress, int64_t parent_window) {
+                 std::vector<CandidateFilter>& filters, ScoreCell* cells, const ScoreRunOptions& run) {
   auto source = open_trace(path);
   const SceneAndBvh sb = load_trace_scene(source->header());
   check_traversal_depth(sb.bvh);
   source->set_triangle_count(sb.scene.size());
-  TraceBlocks blocks(*source, parent_window);
+  TraceBlocks blocks(*source, run.parent_window);
   std::vector<ReplayStats> stats(configs.size());
-  while (blocks.next_block(kBlockRays)) {
-    parallel_for(configs.size(), threads, [&](size_t c) {
+  while (blocks.next_block(run.cycle ? 0 : kBlockRays)) {
+    parallel_for(configs.size(), run.threads, [&](size_t c) {
       const auto start = std::chrono::steady_clock::now();
       const std::vector<TraceRay>& rays = blocks.rays();
       for (size_t i = 0; i < rays.size(); ++i) {
@@ -48,7 +61,19 @@ void score_trace(const std::string& path, const std::vector<ScoreConfig>& config
       }
       stats[c].wall_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     });
-    if (progress) progress(blocks.rays().size());
+    for (size_t c = 0; c < configs.size() && run.cycle; ++c) {
+      if (!measures_cycles(run, configs[c])) continue;
+      const CycleCost cost = cycle_replay_cost(blocks.rays(), sb.scene, sb.bvh, configs[c].options, run.hw);
+      if (!same_verdicts(cost.stats, stats[c]))
+        throw std::runtime_error(fmt::format("{}: the cycle-level replay of '{}' with the {} tester gave other "
+                                             "verdicts than the functional replay",
+                                             path, configs[c].method, tester_name(configs[c].options.tester)));
+      cells[c].has_cycles = true;
+      cells[c].cycle_preset = run.hw.preset;
+      cells[c].cycle_rays += cost.rays;
+      cells[c].cycles += cost.cycles;
+    }
+    if (run.progress) run.progress(blocks.rays().size());
   }
   for (size_t c = 0; c < configs.size(); ++c) {
     check_ray_conservation(fmt::format("{} ({} {})", path, configs[c].method, tester_name(configs[c].options.tester)),
@@ -101,8 +126,8 @@ std::vector<ScoreConfig> score_configs(const std::vector<MethodSpec>& methods,
 }
 
 std::vector<ScoreCell> run_score(const std::vector<ScoreFamily>& families,
-                                 const std::vector<ScoreConfig>& configs, int threads,
-                                 const ScoreProgress& progress, int64_t parent_window) {
+                                 const std::vector<ScoreConfig>& configs, const ScoreRunOptions& options) {
+  if (options.threads < 1) throw std::invalid_argument("run_score: threads must be >= 1");
   std::vector<CandidateFilter> filters;
   for (const ScoreConfig& c : configs) filters.emplace_back(c.options.method);
   std::vector<ScoreCell> cells;
@@ -116,7 +141,7 @@ std::vector<ScoreCell> run_score(const std::vector<ScoreFamily>& families,
       cell.config = replay_config_json(c.options);
       cells.push_back(std::move(cell));
     }
-    for (const std::string& trace : fam.traces) score_trace(trace, configs, filters, &cells[first], threads, progress, parent_window);
+    for (const std::string& trace : fam.traces) score_trace(trace, configs, filters, &cells[first], options);
   }
   return cells;
 }

@@ -8,8 +8,10 @@
 #include <string>
 #include <vector>
 
+#include "hw/hw_config.h"
 #include "replay/replay_stats.h"
 #include "score/method_spec.h"
+#include "trace/parent_ray_store.h"
 
 namespace vbsim {
 
@@ -44,19 +46,35 @@ struct ScoreCell {
   nlohmann::json config;  ///< the effective configuration (replay_config_json)
   ReplayStats stats;      ///< summed over the traces; wall_s: this configuration's replay time
   int traces = 0;
+  bool has_cycles = false;   ///< measured by the cycle-level model (cycle mode)
+  uint64_t cycle_rays = 0;   ///< rays the cycle-level replays finished
+  uint64_t cycles = 0;       ///< summed over the traces, each replayed on its own
+  std::string cycle_preset;  ///< the hardware preset the cycles were measured on
 };
 
 /// Told the number of rays of a block just replayed with every configuration.
 using ScoreProgress = std::function<void(uint64_t rays)>;
 
-/// Replays every family with every configuration using `threads` threads (>= 1),
-/// parents looked up among the last `parent_window` rays (ParentRayStore).
-/// Cells are ordered family, then configuration. Throws TraceError naming the
-/// trace on bad input, ConservationError when a configuration's statistics do
-/// not count every ray read. `progress` (may be empty) is called after every block.
+/// How a score run replays.
+struct ScoreRunOptions {
+  int threads = 1;  ///< functional replays in parallel (>= 1)
+  /// Cycle mode: every configuration whose tester is in cycle_testers is also
+  /// replayed by the cycle-level model of `hw`, trace by trace, one at a
+  /// time; its verdicts must equal the functional ones.
+  bool cycle = false;
+  hw::HwConfig hw;
+  std::vector<TesterKind> cycle_testers;
+  ScoreProgress progress;  ///< called after every block (may be empty)
+  /// Parents are looked up among the last `parent_window` rays (ParentRayStore).
+  int64_t parent_window = ParentRayStore::kDefaultWindow;
+};
+
+/// Replays every family with every configuration. Cells are ordered family,
+/// then configuration. Throws TraceError naming the trace on bad input, and
+/// std::runtime_error when a cycle-level replay's verdicts differ from the
+/// functional replay's, ConservationError when a configuration's statistics do
+/// not count every ray read.
 std::vector<ScoreCell> run_score(const std::vector<ScoreFamily>& families,
-                                 const std::vector<ScoreConfig>& configs, int threads,
-                                 const ScoreProgress& progress = {},
-                                 int64_t parent_window = ParentRayStore::kDefaultWindow);
+                                 const std::vector<ScoreConfig>& configs, const ScoreRunOptions& options);
 
 }  // namespace vbsim

@@ -1,7 +1,9 @@
-// Score tables: the rows of a score run, one per (family, method, tester, ray
-// kind) plus an `all` row per configuration, as JSON and as markdown. Rates are
-// per million scored rays (rays with `expect`), each with its 95% Wilson score
-// interval; the avoidance unit's rates are per candidate hit.
+// Score tables: the rows of a score run as JSON, per (family, method, tester)
+// one row per ray kind present, a `secondary` row (every kind but `primary`,
+// i.e. every ray leaving a surface: the rows that measure self-intersection)
+// and an `all` row. Rates are per million scored rays (rays with `expect`),
+// each with its 95% Wilson score interval; the avoidance unit's rates are per
+// candidate hit. score_markdown.h and tradeoff_table.h read this JSON.
 #pragma once
 #include <string>
 #include <vector>
@@ -12,16 +14,17 @@
 
 namespace vbsim {
 
+/// The kind of the rows that sum every ray with a parent surface.
+constexpr const char* kSecondaryKind = "secondary";
+
 /// The JSON document: `command`, `confidence`, `families` (name, traces,
 /// generator) and `rows` (family, method, tester, kind, rays, scored, counts,
-/// per_million {verdict: {rate, lower, upper}}, avoidance; `all` rows add
-/// rays_per_s and config).
+/// per_million {verdict: {rate, lower, upper}}, errors {count, per_million}
+/// (self_hit + false_hit + missed), emission and offset fallbacks, avoidance;
+/// `all` rows add rays_per_s, ops_per_ray, config and, when measured, `cycle`
+/// {preset, rays, cycles, cycles_per_ray, rays_per_cycle}).
 nlohmann::json score_json(const std::vector<ScoreFamily>& families, const std::vector<ScoreCell>& cells,
                           const std::string& command);
-
-/// The markdown page (docs/results/accuracy.md): a header saying it is
-/// generated and how to regenerate it (`regenerate`), then a table per family.
-std::string score_markdown(const nlohmann::json& score, const std::string& regenerate);
 
 /// A per-million rate for a table: integers from 100 up, one decimal from 1, two
 /// significant digits below 1, "0" for zero.

@@ -23,9 +23,13 @@ void add_render_command(CLI::App& app);
 void add_hw_command(CLI::App& app);
 void add_check_command(CLI::App& app);
 void add_capture_command(CLI::App& app);
+void add_reintersect_command(CLI::App& app);
 
-/// The main job: replay of the default trace with validity-bit, printed summary.
+/// The main job: replay of the default trace with validity-bit, printed
+/// summary, then the trade-off table of every method on the same trace.
 int run_default_job();
+/// Prints the trade-off table of every default score method on `trace`.
+void print_tradeoff_table(const std::string& trace);
 
 /// `--parent-window N`: rays kept for children to find their parent in
 /// (ParentRayStore), checked to be in 1..ParentRayStore::kMaxWindow.

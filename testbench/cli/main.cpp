@@ -38,6 +38,7 @@ int sc_main(int argc, char** argv) {
   add_hw_command(app);
   add_check_command(app);
   add_capture_command(app);
+  add_reintersect_command(app);
   try {
     app.parse(argc, argv);
     if (app.get_subcommands().empty()) return run_default_job();

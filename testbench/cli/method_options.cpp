@@ -99,17 +99,18 @@ ReplayOptions resolve_method_options(const MethodOptions& o) {
   return opt;
 }
 
-std::vector<TesterKind> parse_tester_list(const std::string& list) {
+std::vector<TesterKind> parse_tester_list(const std::string& list, const std::string& option) {
   std::vector<TesterKind> out;
   std::stringstream in(list);
   for (std::string name; std::getline(in, name, ',');) {
     TesterKind t;
     if (!parse_tester(name, t))
       throw UsageError(fmt::format(
-          "option '--testers': unknown tester '{}'; testers: three-half-plane, moller-trumbore, pbrt-watertight", name));
+          "option '{}': unknown tester '{}'; testers: three-half-plane, moller-trumbore, pbrt-watertight", option,
+          name));
     out.push_back(t);
   }
-  if (out.empty()) throw UsageError("option '--testers': empty list");
+  if (out.empty()) throw UsageError(fmt::format("option '{}': empty list", option));
   return out;
 }
 

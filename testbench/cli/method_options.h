@@ -34,7 +34,7 @@ void add_method_options(CLI::App& app, MethodOptions& o, const std::string& defa
 ReplayOptions resolve_method_options(const MethodOptions& o);
 
 /// A `--testers` comma list; throws UsageError naming an unknown tester or an empty list.
-std::vector<TesterKind> parse_tester_list(const std::string& list);
+std::vector<TesterKind> parse_tester_list(const std::string& list, const std::string& option = "--testers");
 
 /// Throws UsageError unless `preset` is empty or a hardware preset's name.
 void check_preset_name(const std::string& preset);

@@ -262,7 +262,9 @@ int run_default_job() {
   ReplayArgs a;
   a.trace = default_trace_path();
   a.method.default_method = "validity-bit";
-  return run_replay_command(a);
+  const int rc = run_replay_command(a);
+  print_tradeoff_table(a.trace);
+  return rc;
 }
 
 }  // namespace vbsim::cli

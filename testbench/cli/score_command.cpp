@@ -2,6 +2,7 @@
 // process; a table of verdict rates with 95% intervals (model/score/).
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 #include <thread>
@@ -17,8 +18,10 @@
 #include "score_merge.h"
 #include "trace/trace_ray_count.h"
 #include "replay/replay_config.h"
+#include "score/score_markdown.h"
 #include "score/score_run.h"
 #include "score/score_table.h"
+#include "score/tradeoff_table.h"
 
 namespace vbsim::cli {
 
@@ -33,26 +36,19 @@ struct ScoreArgs {
   int64_t parent_window = ParentRayStore::kDefaultWindow;
   bool merge = false;
   bool testers_given = false;
+  std::string mode = "functional", preset, cycle_testers;
 };
 
-std::string joined_default_methods() {
-  std::string s;
-  for (const std::string& m : default_score_methods()) s += (s.empty() ? "" : ",") + m;
-  return s;
-}
 
 void print_summary(const nlohmann::json& score) {
-  fmt::print("{:<14} {:<48} {:<17} {:>9} {:>10} {:>10} {:>10} {:>10}\n", "family", "method", "tester",
-             "rays", "self_hit/M", "false/M", "missed/M", "rays/s");
-  for (const auto& r : score["rows"]) {
-    if (r["kind"] != "all") continue;
-    const auto& pm = r["per_million"];
-    fmt::print("{:<14} {:<48} {:<17} {:>9} {:>10} {:>10} {:>10} {:>10.0f}\n", r["family"].get<std::string>(),
-               r["method"].get<std::string>(), r["tester"].get<std::string>(), r["rays"].get<uint64_t>(),
-               format_per_million(pm["self_hit"]["rate"].get<double>()),
-               format_per_million(pm["false_hit"]["rate"].get<double>()),
-               format_per_million(pm["missed"]["rate"].get<double>()), r["rays_per_s"].get<double>());
-  }
+  const std::vector<TradeoffRow> rows = tradeoff_rows(score);
+  const bool cycles = std::any_of(rows.begin(), rows.end(), [](const TradeoffRow& r) { return r.has_cycles; });
+  fmt::print("{:<22} {:<44} {:<16} {:>9} {:>12} {:>13} {:>10} {:>10}\n", "family", "method", "tester",
+             "secondary", "sec. err/M", "camera miss/M", cycles ? "cycles/ray" : "", "rays/s");
+  for (const TradeoffRow& r : rows)
+    fmt::print("{:<22} {:<44} {:<16} {:>9} {:>12} {:>13} {:>10} {:>10.0f}\n", r.family, r.method, r.tester,
+               r.secondary_scored, format_per_million(r.secondary_rate), format_per_million(r.camera_miss_rate),
+               r.has_cycles ? fmt::format("{:.3g}", r.cycles_per_ray) : "", r.rays_per_s);
 }
 
 /// Writes the table (JSON, markdown) and prints its summary.
@@ -70,6 +66,11 @@ void write_outputs(const ScoreArgs& a, nlohmann::json score, const std::string& 
 
 void run_score_command(const ScoreArgs& a) {
   if (a.threads < 1) throw UsageError("option '--threads': must be >= 1");
+  if (a.mode != "functional" && a.mode != "cycle")
+    throw UsageError(fmt::format("option '--mode': '{}' is not a mode (functional, cycle)", a.mode));
+  if (a.mode != "cycle" && (!a.preset.empty() || !a.cycle_testers.empty()))
+    throw UsageError("options '--preset' and '--cycle-testers' need '--mode cycle'");
+  check_preset_name(a.preset);
   std::string command = "vbsim score";
   for (const std::string& p : a.paths) command += " " + p;
   if (a.merge) {
@@ -80,7 +81,7 @@ void run_score_command(const ScoreArgs& a) {
   }
   std::vector<MethodSpec> methods;
   try {
-    methods = parse_method_list(a.methods.empty() ? joined_default_methods() : a.methods);
+    methods = parse_method_list(a.methods.empty() ? default_score_method_list() : a.methods);
   } catch (const ConfigError& e) {
     throw UsageError(std::string("option '--methods': ") + e.what());
   }
@@ -93,6 +94,15 @@ void run_score_command(const ScoreArgs& a) {
 
   if (!a.methods.empty()) command += " --methods " + a.methods;
   command += " --testers " + a.testers;
+  ScoreRunOptions run;
+  run.threads = a.threads;
+  if (a.mode == "cycle") {
+    run.cycle = true;
+    run.hw = hw::resolve_hw_config("", a.preset);
+    run.cycle_testers = a.cycle_testers.empty() ? testers : parse_tester_list(a.cycle_testers, "--cycle-testers");
+    command += " --mode cycle --preset " + run.hw.preset;
+    if (!a.cycle_testers.empty()) command += " --cycle-testers " + a.cycle_testers;
+  }
 
   std::vector<std::string> inputs;
   uint64_t total = 0;
@@ -104,8 +114,9 @@ void run_score_command(const ScoreArgs& a) {
     }
   const std::vector<ScoreConfig> configs = score_configs(methods, testers);
   ProgressMeter meter(fmt::format("score: {} configurations", configs.size()), total, "rays", terminal);
-  const std::vector<ScoreCell> cells =
-      run_score(families, configs, a.threads, [&meter](uint64_t n) { meter.add(n); }, a.parent_window);
+  run.progress = [&meter](uint64_t n) { meter.add(n); };
+  run.parent_window = a.parent_window;
+  const std::vector<ScoreCell> cells = run_score(families, configs, run);
   meter.finish();
   write_outputs(a, score_json(families, cells, command), command, inputs);
 }
@@ -121,13 +132,20 @@ void add_score_command(CLI::App& app) {
       ->required();
   cmd->add_option("--methods", args->methods,
                   "comma list of METHOD[+METHOD][:KEY=VALUE...], KEY a replay option without dashes "
-                  "(e.g. validity-bit:vb-eps-mode=fixed:vb-eps=1e-4) [" + joined_default_methods() + "]");
+                  "(e.g. validity-bit:vb-eps-mode=fixed:vb-eps=1e-4) [" + default_score_method_list() + "]");
   CLI::Option* testers = cmd->add_option("--testers", args->testers, "comma list of testers")->capture_default_str();
   cmd->add_option("--out", args->out, "write the score table as JSON here");
   cmd->add_option("--accuracy-md", args->markdown, "write the markdown table here (docs/results/accuracy.md)");
   cmd->add_option("--regenerate-with", args->regenerate,
                   "the command the markdown names for regenerating it [this score command]");
-  cmd->add_option("--threads", args->threads, "worker threads")->capture_default_str();
+  cmd->add_option("--threads", args->threads, "worker threads of the functional replays")->capture_default_str();
+  cmd->add_option("--mode", args->mode,
+                  "functional, or cycle: also every configuration's cycles per ray and rays per cycle from the "
+                  "cycle-level model on the same traces (one replay at a time)")
+      ->capture_default_str();
+  cmd->add_option("--preset", args->preset, "cycle mode: hardware preset, small or large [small]");
+  cmd->add_option("--cycle-testers", args->cycle_testers,
+                  "cycle mode: the testers whose configurations are timed [every tester of --testers]");
   add_parent_window_option(*cmd, args->parent_window);
   cmd->add_flag("--quiet,-q", args->quiet, "print nothing on success");
   cmd->add_flag("--merge", args->merge,

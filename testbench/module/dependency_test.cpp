@@ -25,12 +25,7 @@ struct Logged {
 
 Logged run_logged(const std::vector<TraceRay>& rays, const Scene& scene, const Bvh& bvh, const HwConfig& cfg) {
   Logged out;
-  size_t next = 0;
-  const RayFeed feed = [&](TraceRay& tr) {
-    if (next == rays.size()) return false;
-    tr = rays[next++];
-    return true;
-  };
+  const RayFeed feed = feed_of(rays);
   CycleRunOptions options;
   options.ray_times = [&](const RayTimes& t) { out.times[t.id] = t; };
   out.result = run_cycle_replay(feed, scene, bvh, ReplayOptions{}, cfg, {}, options);
@@ -70,7 +65,7 @@ TEST_CASE("a parent and its two children on one slot: the children wait for the 
   CHECK(t.at(3).parent == 1);
   const auto& src = run.result.hw["instances"]["accelerator.ray_source"];
   CHECK(src["children_waited"] == 2);
-  CHECK(src["dependency_wait_cycles"] == 2 * 46);  // both entered the buffer at cycle 0
+  CHECK(src["dependency_wait_cycles"] == 2 * (46 - 1));  // both read into the buffer at cycle 1, when P left it
   CHECK(src["lane_idle_dependency_cycles"] == 46 - 1);
   CHECK(src["no_free_slot_cycles"] == 82 - 48);
   CHECK(run.result.counters.cycles == 117);
@@ -99,6 +94,46 @@ TEST_CASE("a child whose parent is not in the trace is ready at once and counted
   const Logged run = run_logged({child_of(2, 99)}, f.scene, f.bvh, one_slot(3, 5, 11, 7));
   CHECK(run.times.at(2).ready == 0);
   CHECK(run.result.hw["instances"]["accelerator.ray_source"]["parents_not_found"] == 1);
+}
+
+TEST_CASE("ray ids off the trace's sequence find their parents as sequential ids do", "[module][deps]") {
+  // The source takes a ray's position from its id while the ids run 1, 2, 3, ...
+  // and from its id table once one does not; either way each child waits for
+  // its own parent, also across the switch and after parents left a small window.
+  const ThreeFloors f;
+  HwConfig cfg = one_slot(3, 5, 11, 7);
+  cfg.shader.latency_cycles = 4;
+  cfg.source.window = 2;
+  // Parent (by position) of each ray; -1: a camera ray.
+  const std::vector<int> parent_at = {-1, 0, 1, -1, 3, 2, 4, -1, 7, 8, 8, -1, 11, 12};
+  const auto trace_with = [&](const std::vector<int64_t>& ids) {
+    std::vector<TraceRay> rays;
+    for (size_t i = 0; i < parent_at.size(); ++i)
+      rays.push_back(parent_at[i] < 0 ? down_from(ids[i], 1.0f) : child_of(ids[i], ids[parent_at[i]]));
+    return rays;
+  };
+  std::vector<int64_t> sequential(parent_at.size());
+  for (size_t i = 0; i < sequential.size(); ++i) sequential[i] = static_cast<int64_t>(i) + 1;
+  std::vector<int64_t> off = sequential;
+  off[5] = 500;  // off the sequence from position 5 on: 1..5, 500, 7.., then a lower id and a large one
+  off[8] = 0;
+  off[12] = 2000000000000;
+  const Logged a = run_logged(trace_with(sequential), f.scene, f.bvh, cfg);
+  const Logged b = run_logged(trace_with(off), f.scene, f.bvh, cfg);
+  const auto& sa = a.result.hw["instances"]["accelerator.ray_source"];
+  const auto& sb = b.result.hw["instances"]["accelerator.ray_source"];
+  CHECK(sa["children_waited"] > 0);
+  CHECK(sa["parents_not_found"] == 0);
+  CHECK(sb["children_waited"] == sa["children_waited"]);
+  CHECK(sb["parents_not_found"] == 0);
+  for (size_t i = 0; i < parent_at.size(); ++i) {
+    const RayTimes& ta = a.times.at(sequential[i]);
+    const RayTimes& tb = b.times.at(off[i]);
+    INFO("position " << i);
+    CHECK((std::vector<uint64_t>{ta.ready, ta.emitted, ta.started, ta.finished}) ==
+          std::vector<uint64_t>{tb.ready, tb.emitted, tb.started, tb.finished});
+    if (parent_at[i] >= 0) CHECK(tb.ready >= b.times.at(off[parent_at[i]]).finished + 4);
+  }
 }
 
 TEST_CASE("an emission width of several rays a cycle reaches its bound with ideal memory", "[module][deps]") {

@@ -40,12 +40,7 @@ CycleRunResult run_one_ray(const CycleRunOptions& options, uint32_t cores = 1) {
   cfg.cores = cores;
   std::vector<TraceRay> rays;
   for (uint32_t c = 0; c < cores; ++c) rays.push_back(down_from(1 + c, 1.0f));
-  size_t next = 0;
-  const RayFeed feed = [&](TraceRay& tr) {
-    if (next == rays.size()) return false;
-    tr = rays[next++];
-    return true;
-  };
+  const RayFeed feed = feed_of(rays);
   return run_cycle_replay(feed, f.scene, f.bvh, ReplayOptions{}, cfg, {}, options);
 }
 

@@ -60,6 +60,12 @@ class BoundTest(unittest.TestCase):
         self.assertAlmostEqual(t["source"], 0.8)
         self.assertNotIn("avoidance", t)  # no suspects: the unit sets no bound
 
+    def test_emission_lanes_multiply_the_source_bound(self):
+        # 4 lanes share 1250 busy lane-cycles for 1000 rays: 4 x 0.8 rays per cycle.
+        s = stats(1000, 1250, 16.0, 3.0)
+        s["config"]["hw"]["source"] = {"rays_per_cycle": 4}
+        self.assertAlmostEqual(bound_terms(s)["source"], 3.2)
+
     def test_limit_names_the_bound_unit_when_reached(self):
         r = {"bound_terms": {"source": 1.0, "box": 0.25}, "rays_per_cycle": 0.24, "cores": 4,
              "slots_per_core": 32, "rays": 10000}

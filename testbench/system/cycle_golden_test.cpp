@@ -68,7 +68,7 @@ void strip_unpinned(nlohmann::json& j) {
       hw.erase("shader");
     }
   }
-  for (const char* extra : {"provenance", "vbsim", "checks"}) j.erase(extra);
+  for (const char* extra : {"provenance", "vbsim", "checks", "offset_fallbacks"}) j.erase(extra);
   if (j.contains("hw")) {
     j["hw"].erase("instances");
     j["hw"].erase("emission");

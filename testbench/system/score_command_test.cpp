@@ -114,13 +114,54 @@ TEST_CASE("score writes a generated markdown page with intervals", "[system][sco
   REQUIRE(r.exit_code == 0);
   const std::string text = read_file(md);
   CHECK_THAT(text, Catch::Contains("do not edit by hand") && Catch::Contains("    scripts/make_results.sh") &&
-                       Catch::Contains("## bunny") && Catch::Contains("| `tmin` | three-half-plane | all | 1008 |"));
-  // tmin has no self hit on the bundled trace: rate 0, upper bound z^2/(n+z^2) per million.
-  CHECK_THAT(text, Catch::Contains("| 0 [0, 3797] |"));
-  // The summary: 369 self hits of 1008 rays without a method (the committed
-  // expectations of the default trace) are 366071 per million.
-  CHECK_THAT(text, Catch::Contains("## Summary, three-half-plane tester") &&
-                       Catch::Contains("| `none` | 366071 |") && Catch::Contains("| `tmin` | 0 |"));
+                       Catch::Contains("## bunny") &&
+                       Catch::Contains("| `tmin` | three-half-plane | secondary | 808 |") &&
+                       Catch::Contains("| `tmin` | three-half-plane | primary | 200 |"));
+  // tmin has no self hit among the 808 secondary rays of the bundled trace:
+  // rate 0, upper bound z^2/(n+z^2) per million.
+  CHECK_THAT(text, Catch::Contains("| 0 [0, 4732] |"));
+  // The summary (secondary rays only): 369 self hits of 808 rays without a
+  // method (the committed expectations of the default trace) are 456683 per million.
+  CHECK_THAT(text, Catch::Contains("## Summary, three-half-plane tester: secondary-ray errors per million") &&
+                       Catch::Contains("| `none` | 456683 |") && Catch::Contains("| `tmin` | 0 |"));
+  // The trade-off table of the family: the same rate with its interval, bits per ray.
+  CHECK_THAT(text, Catch::Contains("| `none` | three-half-plane | 456683 [422623, 491153] | 808 | 0 | 259 |"));
+}
+
+TEST_CASE("score --mode cycle times every configuration on the traces it scores", "[system][score][cycle]") {
+  const auto dir = scratch_dir("score_cycle");
+  const std::string bunny = source_dir() + "/traces/bunny";
+  const auto cyc = (dir / "cycle.json").string(), fun = (dir / "functional.json").string();
+  const auto md = (dir / "accuracy.md").string();
+  RunResult r = run_vbsim("score " + bunny + " -q --methods none,offset-adaptive --testers three-half-plane,"
+                          "pbrt-watertight --mode cycle --preset small --cycle-testers three-half-plane --out " +
+                          cyc + " --accuracy-md " + md);
+  INFO(r.output);
+  REQUIRE(r.exit_code == 0);
+  r = run_vbsim("score " + bunny + " -q --methods none,offset-adaptive --testers three-half-plane,pbrt-watertight "
+                "--out " + fun);
+  REQUIRE(r.exit_code == 0);
+  const json c = json::parse(read_file(cyc)), f = json::parse(read_file(fun));
+  REQUIRE(c["rows"].size() == f["rows"].size());
+  for (size_t i = 0; i < c["rows"].size(); ++i) CHECK(c["rows"][i]["counts"] == f["rows"][i]["counts"]);
+  // The cycles of one trace are those of `vbsim replay --mode cycle` on it.
+  const auto stats = (dir / "replay.json").string();
+  REQUIRE(run_vbsim("replay " + bunny + "/paths.jsonl -q --mode cycle --preset small -m offset-adaptive --stats " +
+                    stats).exit_code == 0);
+  const json replay = json::parse(read_file(stats));
+  const json* timed = find_row(c, "bunny", "offset-adaptive", "three-half-plane", "all");
+  REQUIRE(timed);
+  REQUIRE(timed->contains("cycle"));
+  const json& cy = (*timed)["cycle"];
+  CHECK(cy["preset"] == "small");
+  CHECK(cy["rays"] == 1008);
+  CHECK(cy["cycles"] == replay["hw"]["cycles"]);
+  CHECK(cy["cycles_per_ray"].get<double>() == Approx(cy["cycles"].get<double>() / 1008));
+  CHECK(cy["rays_per_cycle"].get<double>() == Approx(1008 / cy["cycles"].get<double>()));
+  // Only the testers asked for are timed.
+  CHECK_FALSE(find_row(c, "bunny", "offset-adaptive", "pbrt-watertight", "all")->contains("cycle"));
+  CHECK_THAT(read_file(md), Catch::Contains("| cycles/ray | rays/cycle |") &&
+                                Catch::Contains("### Cycles per ray, small preset, three-half-plane tester"));
 }
 
 TEST_CASE("score rejects bad input with a clear message", "[system][score][errors]") {
@@ -135,6 +176,9 @@ TEST_CASE("score rejects bad input with a clear message", "[system][score][error
       {"score " + bunny + " --methods warp", "unknown value \"warp\""},
       {"score " + bunny + " --methods tmin:eps=3", "unknown key 'eps'"},
       {"score " + bunny + " --testers slab", "unknown tester 'slab'"},
+      {"score " + bunny + " --preset small", "need '--mode cycle'"},
+      {"score " + bunny + " --mode timed", "'timed' is not a mode"},
+      {"score " + bunny + " --mode cycle --preset huge", "huge"},
       {"score " + bunny + " " + bunny, "a second scenario family named 'bunny'"},
       {"score " + bunny + " --threads 0", "--threads"},
       {"score " + bunny + " --methods none --out /nonexistent/dir/s.json", "/nonexistent/dir/s.json: cannot create"},

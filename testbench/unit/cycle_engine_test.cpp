@@ -32,12 +32,7 @@ struct Run {
 Run run_rays(const std::vector<TraceRay>& rays, const Scene& scene, const Bvh& bvh, const ReplayOptions& opt,
              const HwConfig& cfg) {
   Run run;
-  size_t next = 0;
-  const RayFeed feed = [&](TraceRay& tr) {
-    if (next == rays.size()) return false;
-    tr = rays[next++];
-    return true;
-  };
+  const RayFeed feed = feed_of(rays);
   const RayResultSink sink = [&](const TraceRay& tr, const RayOutcome& out, uint64_t cycle, uint64_t) {
     run.rays[tr.id] = {out.hit.prim, cycle};
   };

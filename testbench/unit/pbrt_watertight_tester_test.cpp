@@ -1,5 +1,5 @@
-// The pbrt-watertight tester: the three-half-plane evaluation plus pbrt-v4's
-// conservative t check. Checked against exact rational answers on rays that
+// The pbrt-watertight tester: pbrt-v4's IntersectTriangle, with its
+// conservative t check (pbrt_fidelity_test.cpp checks its arithmetic bit for bit). Checked against exact rational answers on rays that
 // start at rounded points of a triangle, where a float t of the wrong sign is
 // the whole question.
 #include <catch2/catch.hpp>
@@ -72,7 +72,7 @@ TEST_CASE("pbrt-watertight: no false hit from rounded points where three-half-pl
   INFO("three-half-plane false hits " << false_plain);
   CHECK(false_plain > 100);       // the float tester does re-hit from the right side
   CHECK(false_pbrt == 0);         // the conservative t never does
-  CHECK(hits_pbrt_not_plain == 0);  // it only ever drops hits of the same evaluation
+  CHECK(hits_pbrt_not_plain == 0);  // on these rays its FMA edge functions add no hit either
 }
 
 }  // namespace

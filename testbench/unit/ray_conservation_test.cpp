@@ -41,8 +41,10 @@ TEST_CASE("conservation: functional, cycle-level and score runs count every ray 
   CHECK(cycle.stats.rays_dropped == 0);
   for (int k = 0; k < kRayKindCount; ++k) CHECK(cycle.stats.by_kind[k].rays == functional.by_kind[k].rays);
 
+  ScoreRunOptions two_threads;
+  two_threads.threads = 2;
   const std::vector<ScoreCell> cells =
-      run_score(collect_score_families({kTrace}), score_configs({MethodSpec{"tmin", opt}}, {TesterKind::ThreeHalfPlane}), 2);
+      run_score(collect_score_families({kTrace}), score_configs({MethodSpec{"tmin", opt}}, {TesterKind::ThreeHalfPlane}), two_threads);
   REQUIRE(cells.size() == 1);
   CHECK(cells[0].stats.total().rays == 1008);
 }

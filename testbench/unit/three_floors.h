@@ -1,9 +1,13 @@
 // Hand-built scenes for cycle counts computed by hand: three floors under a
-// three-node BVH, rays straight down, and a one-core one-slot configuration.
+// three-node BVH, rays straight down, a one-core one-slot configuration, and
+// a feed of a list of rays.
 #pragma once
 #include <cstdint>
 
+#include <vector>
+
 #include "hw/hw_config.h"
+#include "hw/ray_feed.h"
 #include "scene/bvh.h"
 #include "scene/scene.h"
 #include "trace/trace_record.h"
@@ -60,6 +64,15 @@ inline TraceRay down_from(int64_t id, float z) {
   r.o = {0.25f, 0.25f, z};
   r.d = {0, 0, -1};
   return r;
+}
+
+/// The rays of `rays` (which outlives the feed), one after the other.
+inline RayFeed feed_of(const std::vector<TraceRay>& rays) {
+  return [&rays, next = size_t{0}](TraceRay& tr) mutable {
+    if (next == rays.size()) return false;
+    tr = rays[next++];
+    return true;
+  };
 }
 
 }  // namespace vbsim::hw::test

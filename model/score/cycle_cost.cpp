@@ -1,0 +1,23 @@
+#include "score/cycle_cost.h"
+
+#include "hw/cycle_replay.h"
+
+namespace vbsim {
+
+CycleCost cycle_replay_cost(const std::vector<TraceRay>& rays, const Scene& scene, const Bvh& bvh,
+                            const ReplayOptions& opt, const hw::HwConfig& cfg) {
+  size_t next = 0;
+  const hw::RayFeed feed = [&](TraceRay& tr) {
+    if (next == rays.size()) return false;
+    tr = rays[next++];
+    return true;
+  };
+  const hw::CycleRunResult run = hw::run_cycle_replay(feed, scene, bvh, opt, cfg, hw::RayResultSink{}, {});
+  CycleCost c;
+  c.rays = run.counters.rays;
+  c.cycles = run.counters.cycles;
+  c.stats = run.stats;
+  return c;
+}
+
+}  // namespace vbsim

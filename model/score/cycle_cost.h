@@ -1,0 +1,30 @@
+// Cycle-level cost of a trace's rays under one configuration: the one place
+// `vbsim score --mode cycle` and the main job's trade-off table run the
+// cycle-level model (hw::run_cycle_replay). SystemC runs one simulation at a
+// time per process, so callers run these one after another, never from
+// several threads.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "hw/hw_config.h"
+#include "replay/replay_options.h"
+#include "replay/replay_stats.h"
+#include "scene/bvh.h"
+#include "scene/scene.h"
+#include "trace/trace_record.h"
+
+namespace vbsim {
+
+struct CycleCost {
+  uint64_t rays = 0;
+  uint64_t cycles = 0;  ///< from the first ray's arrival to the last ray's verdict
+  ReplayStats stats;    ///< the cycle-level replay's own verdicts and counters
+};
+
+/// Replays `rays` (one trace, parents before children) through the cycle-level
+/// model of `cfg` on `scene`/`bvh` under `opt`.
+CycleCost cycle_replay_cost(const std::vector<TraceRay>& rays, const Scene& scene, const Bvh& bvh,
+                            const ReplayOptions& opt, const hw::HwConfig& cfg);
+
+}  // namespace vbsim
