@@ -180,7 +180,8 @@ void RaySource::enter(uint64_t pos, uint64_t now) {
 bool RaySource::find_position(int64_t id, uint64_t& pos) const {
   if (!ids_dense_) return position_of_.find(id, pos);
   const uint64_t p = static_cast<uint64_t>(id) - static_cast<uint64_t>(first_id_);  // an id below the first wraps high
-  if (p >= next_ || p + capacity_ < next_) return false;  // not read yet, or left the history
+  // Known: [next - capacity + 1, next), as in the table (next's ring place is the entering ray's).
+  if (p >= next_ || p + capacity_ <= next_) return false;
   pos = p;
   return true;
 }

@@ -141,7 +141,7 @@ class RaySource final : public sc_core::sc_module, public StatProvider {
   void fill_until_ready(uint64_t now);
   void enter(uint64_t pos, uint64_t now);
   void make_ready(uint64_t pos, uint64_t cycle);
-  /// The trace position of the ray `id` among the last capacity_ rays read, or false.
+  /// The trace position of the ray `id` among the capacity_ - 1 rays read before the one entering, or false.
   bool find_position(int64_t id, uint64_t& pos) const;
   /// Records that the ray `id` is at `pos` (the next position read).
   void note_position(int64_t id, uint64_t pos);
