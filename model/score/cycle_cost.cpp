@@ -4,14 +4,8 @@
 
 namespace vbsim {
 
-CycleCost cycle_replay_cost(const std::vector<TraceRay>& rays, const Scene& scene, const Bvh& bvh,
-                            const ReplayOptions& opt, const hw::HwConfig& cfg) {
-  size_t next = 0;
-  const hw::RayFeed feed = [&](TraceRay& tr) {
-    if (next == rays.size()) return false;
-    tr = rays[next++];
-    return true;
-  };
+CycleCost cycle_replay_cost(const hw::RayFeed& feed, const Scene& scene, const Bvh& bvh, const ReplayOptions& opt,
+                            const hw::HwConfig& cfg) {
   const hw::CycleRunResult run = hw::run_cycle_replay(feed, scene, bvh, opt, cfg, hw::RayResultSink{}, {});
   CycleCost c;
   c.rays = run.counters.rays;

@@ -5,14 +5,13 @@
 // several threads.
 #pragma once
 #include <cstdint>
-#include <vector>
 
 #include "hw/hw_config.h"
+#include "hw/ray_feed.h"
 #include "replay/replay_options.h"
 #include "replay/replay_stats.h"
 #include "scene/bvh.h"
 #include "scene/scene.h"
-#include "trace/trace_record.h"
 
 namespace vbsim {
 
@@ -22,9 +21,10 @@ struct CycleCost {
   ReplayStats stats;    ///< the cycle-level replay's own verdicts and counters
 };
 
-/// Replays `rays` (one trace, parents before children) through the cycle-level
-/// model of `cfg` on `scene`/`bvh` under `opt`.
-CycleCost cycle_replay_cost(const std::vector<TraceRay>& rays, const Scene& scene, const Bvh& bvh,
-                            const ReplayOptions& opt, const hw::HwConfig& cfg);
+/// Replays the rays `feed` gives (one trace, parents before children, streamed:
+/// nothing of the trace is held beyond the model's own window) through the
+/// cycle-level model of `cfg` on `scene`/`bvh` under `opt`.
+CycleCost cycle_replay_cost(const hw::RayFeed& feed, const Scene& scene, const Bvh& bvh, const ReplayOptions& opt,
+                            const hw::HwConfig& cfg);
 
 }  // namespace vbsim

@@ -40,9 +40,23 @@ bool measures_cycles(const ScoreRunOptions& run, const ScoreConfig& c) {
                           run.cycle_testers.end();
 }
 
-/// Replays one trace with every configuration, adding into cells[0..configs).
-/// Cycle mode reads the whole trace first, so that the cycle-level replays
-/// see exactly the rays the functional replays saw.
+/// The cycle-level cost of configuration `c` on the trace at `path`, read a
+/// second time and streamed into the model, so that a score run in cycle mode
+/// holds no more of the trace than a functional one. The functional pass has
+/// read the same file already, so this pass sees the same rays.
+CycleCost trace_cycle_cost(const std::string& path, const SceneAndBvh& sb, const ScoreConfig& c,
+                           const ScoreRunOptions& run) {
+  auto source = open_trace(path);
+  source->set_triangle_count(sb.scene.size());
+  ReplayOptions opt = c.options;
+  opt.parent_window = run.parent_window;
+  const hw::RayFeed feed = [&](TraceRay& tr) { return source->next(tr); };
+  return cycle_replay_cost(feed, sb.scene, sb.bvh, opt, run.hw);
+}
+
+/// Replays one trace with every configuration, adding into cells[0..configs),
+/// in blocks of kBlockRays. Cycle mode then replays the trace through the
+/// cycle-level model for every timed configuration, one after the other.
 void score_trace(const std::string& path, const std::vector<ScoreConfig>& configs,
                  std::vector<CandidateFilter>& filters, ScoreCell* cells, const ScoreRunOptions& run) {
   auto source = open_trace(path);
@@ -51,7 +65,7 @@ void score_trace(const std::string& path, const std::vector<ScoreConfig>& config
   source->set_triangle_count(sb.scene.size());
   TraceBlocks blocks(*source, run.parent_window);
   std::vector<ReplayStats> stats(configs.size());
-  while (blocks.next_block(run.cycle ? 0 : kBlockRays)) {
+  while (blocks.next_block(kBlockRays)) {
     parallel_for(configs.size(), run.threads, [&](size_t c) {
       const auto start = std::chrono::steady_clock::now();
       const std::vector<TraceRay>& rays = blocks.rays();
@@ -61,23 +75,26 @@ void score_trace(const std::string& path, const std::vector<ScoreConfig>& config
       }
       stats[c].wall_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     });
-    for (size_t c = 0; c < configs.size() && run.cycle; ++c) {
-      if (!measures_cycles(run, configs[c])) continue;
-      const CycleCost cost = cycle_replay_cost(blocks.rays(), sb.scene, sb.bvh, configs[c].options, run.hw);
-      if (!same_verdicts(cost.stats, stats[c]))
-        throw std::runtime_error(fmt::format("{}: the cycle-level replay of '{}' with the {} tester gave other "
-                                             "verdicts than the functional replay",
-                                             path, configs[c].method, tester_name(configs[c].options.tester)));
-      cells[c].has_cycles = true;
-      cells[c].cycle_preset = run.hw.preset;
-      cells[c].cycle_rays += cost.rays;
-      cells[c].cycles += cost.cycles;
-    }
-    if (run.progress) run.progress(blocks.rays().size());
+    // Cycle mode reports a trace once its cycle-level replays are done too.
+    if (run.progress && !run.cycle) run.progress(blocks.rays().size());
   }
-  for (size_t c = 0; c < configs.size(); ++c) {
+  for (size_t c = 0; c < configs.size(); ++c)
     check_ray_conservation(fmt::format("{} ({} {})", path, configs[c].method, tester_name(configs[c].options.tester)),
                            static_cast<uint64_t>(blocks.rays_read()), stats[c].total().rays);
+  for (size_t c = 0; c < configs.size() && run.cycle; ++c) {
+    if (!measures_cycles(run, configs[c])) continue;
+    const CycleCost cost = trace_cycle_cost(path, sb, configs[c], run);
+    if (!same_verdicts(cost.stats, stats[c]))
+      throw std::runtime_error(fmt::format("{}: the cycle-level replay of '{}' with the {} tester gave other "
+                                           "verdicts than the functional replay",
+                                           path, configs[c].method, tester_name(configs[c].options.tester)));
+    cells[c].has_cycles = true;
+    cells[c].cycle_preset = run.hw.preset;
+    cells[c].cycle_rays += cost.rays;
+    cells[c].cycles += cost.cycles;
+  }
+  if (run.progress && run.cycle) run.progress(static_cast<uint64_t>(blocks.rays_read()));
+  for (size_t c = 0; c < configs.size(); ++c) {
     for (int k = 0; k < kRayKindCount; ++k) cells[c].stats.by_kind[k].add(stats[c].by_kind[k]);
     cells[c].stats.wall_s += stats[c].wall_s;
     ++cells[c].traces;

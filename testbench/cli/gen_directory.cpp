@@ -7,6 +7,8 @@
 #include <fstream>
 #include <set>
 
+#include "io/atomic_output_file.h"
+
 namespace vbsim::cli {
 
 namespace fs = std::filesystem;
@@ -59,10 +61,8 @@ void write_gen_manifest(const std::string& dir, const std::vector<std::string>& 
   nlohmann::json names = nlohmann::json::array();
   for (const std::string& f : files) names.push_back(fs::path(f).filename().string());
   const fs::path path = fs::path(dir) / kGenManifestName;
-  std::ofstream out(path);
   const nlohmann::json j = {{"complete", complete}, {"files", names}, {"provenance", provenance}};
-  if (!out || !(out << j.dump(1) << "\n") || !out.flush())
-    throw std::runtime_error(fmt::format("{}: cannot write gen's file list", path.string()));
+  write_output_file(path.string(), j.dump(1) + "\n", "gen's file list");
 }
 
 }  // namespace vbsim::cli

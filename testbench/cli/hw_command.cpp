@@ -3,13 +3,14 @@
 // each kind of module declares, for a preset or a configuration file.
 #include <fmt/format.h>
 
-#include <fstream>
 #include <memory>
 
 #include "commands.h"
 #include "hw/accelerator.h"
 #include "hw/hierarchy_report.h"
 #include "hw/simulation_context.h"
+#include "io/atomic_output_file.h"
+#include "io/output_paths.h"
 #include "method_options.h"
 
 namespace vbsim::cli {
@@ -24,6 +25,7 @@ struct HwArgs {
 
 void run_hw(const HwArgs& a) {
   const ReplayOptions opt = resolve_method_options(a.method);
+  check_output_paths({{"option '--config'", a.method.config}}, {{"option '--json'", a.json}});
   const hw::HwConfig cfg = hw::resolve_hw_config(a.method.config, a.preset);
   const hw::SimulationContext context;
   const Scene scene;
@@ -35,13 +37,10 @@ void run_hw(const HwArgs& a) {
   if (both) fmt::print("\n");
   if (a.statistics || both) fmt::print("{}", hw::statistics_text(*acc));
   if (!a.json.empty()) {
-    std::ofstream out(a.json);
-    if (!out) throw std::runtime_error(fmt::format("{}: cannot write JSON", a.json));
-    out << nlohmann::json{{"hierarchy", hw::hierarchy_json(*acc)},
-                          {"statistics", hw::statistics_json(*acc)},
-                          {"config", hw::hw_config_json(cfg)}}
-               .dump(2)
-        << "\n";
+    const nlohmann::json j = {{"hierarchy", hw::hierarchy_json(*acc)},
+                              {"statistics", hw::statistics_json(*acc)},
+                              {"config", hw::hw_config_json(cfg)}};
+    write_output_file(a.json, j.dump(2) + "\n", "hw JSON");
   }
   acc.reset();
 }

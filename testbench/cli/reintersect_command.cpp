@@ -3,10 +3,11 @@
 // tester at pbrt's size or larger, without writing a trace.
 #include <fmt/format.h>
 
-#include <fstream>
 #include <thread>
 
 #include "commands.h"
+#include "io/atomic_output_file.h"
+#include "io/output_paths.h"
 #include "method_options.h"
 #include "replay/replay_config.h"
 #include "score/reintersect_run.h"
@@ -22,11 +23,6 @@ struct ReintersectArgs {
   bool quiet = false;
 };
 
-void write_file(const std::string& path, const std::string& text) {
-  std::ofstream out(path);
-  if (!out || !(out << text) || !out.flush()) throw std::runtime_error(fmt::format("{}: cannot write", path));
-}
-
 void run(ReintersectArgs a) {
   if (a.params.triangles < 1) throw ConfigError("option '--triangles': must be >= 1");
   if (a.params.children < 0 || a.params.children > 1000000)
@@ -38,10 +34,11 @@ void run(ReintersectArgs a) {
   const std::string command =
       fmt::format("vbsim reintersect --triangles {} --first {} --children {} --methods {} --testers {}",
                   a.params.triangles, a.params.first, a.params.children, a.methods, a.testers);
+  check_output_paths({}, {{"option '--json'", a.json}, {"option '--markdown'", a.markdown}});
   const ReintersectResult r = run_reintersect(a.params, configs);
   const nlohmann::json j = reintersect_json(r, command);
-  if (!a.json.empty()) write_file(a.json, j.dump(1) + "\n");
-  if (!a.markdown.empty()) write_file(a.markdown, reintersect_markdown(j));
+  if (!a.json.empty()) write_output_file(a.json, j.dump(1) + "\n", "reintersect JSON");
+  if (!a.markdown.empty()) write_output_file(a.markdown, reintersect_markdown(j), "reintersect markdown");
   if (a.quiet) return;
   fmt::print("{}\n{}", command, reintersect_markdown(j));
   fmt::print("{:.1f} s wall\n", r.wall_s);

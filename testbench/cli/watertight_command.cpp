@@ -4,12 +4,13 @@
 // at its interior edges and vertices).
 #include <fmt/format.h>
 
-#include <fstream>
 #include <sstream>
 
 #include "commands.h"
 #include "datapath/watertightness.h"
 #include "exit_codes.h"
+#include "io/atomic_output_file.h"
+#include "io/output_paths.h"
 #include "method_options.h"
 #include "provenance/provenance.h"
 #include "scene/scene.h"
@@ -45,6 +46,9 @@ void run_watertight(const WatertightArgs& a) {
     throw UsageError("options '--outside' and '--inside': need >= 0 origins each and at least one in all");
   if (a.meshes.empty() && (a.outside != 4 || a.inside != 4 || a.seed != 2013))
     throw UsageError("options '--outside', '--inside' and '--seed' apply to meshes given on the command line");
+  std::vector<NamedPath> inputs;
+  for (const std::string& path : a.meshes) inputs.push_back({"mesh", path});
+  check_output_paths(inputs, {{"option '--json'", a.json}});
   std::vector<WatertightnessRow> rows;
   if (a.meshes.empty()) {
     rows = standard_watertightness_rows(testers);
@@ -67,9 +71,7 @@ void run_watertight(const WatertightArgs& a) {
     const nlohmann::json j = {{"origins", {{"outside", a.outside}, {"inside", a.inside}, {"seed", a.seed}}},
                               {"rows", rows_json(rows)},
                               {"provenance", provenance_json(a.meshes)}};
-    std::ofstream out(a.json);
-    if (!out || !(out << j.dump(2) << "\n") || !out.flush())
-      throw std::runtime_error(fmt::format("{}: cannot write watertightness JSON", a.json));
+    write_output_file(a.json, j.dump(2) + "\n", "watertightness JSON");
   }
   if (a.quiet) return;
   fmt::print("{}", format_watertightness_table(rows));

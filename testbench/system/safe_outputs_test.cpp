@@ -56,6 +56,13 @@ TEST_CASE("an output naming an input is refused and the input stays whole", "[cl
   r = run_vbsim("replay " + trace.string() + " --hits " + source_dir() + "/traces/bunny/bunny.obj");
   CHECK(r.exit_code != 0);
   CHECK_THAT(r.output, Catch::Contains("also the scene"));
+  const auto mesh = dir / "box.obj";
+  write_file(mesh, read_file(source_dir() + "/traces/bunny/bunny.obj"));
+  r = run_vbsim("watertight " + mesh.string() + " -q --json " + mesh.string());
+  CHECK(r.exit_code == 2);
+  CHECK_THAT(r.output, Catch::Contains("option '--json'") && Catch::Contains("also the mesh"));
+  CHECK(read_file(mesh) == read_file(source_dir() + "/traces/bunny/bunny.obj"));
+  std::filesystem::remove(mesh);
   CHECK(read_file(trace) == before);
   CHECK(names_in(dir) == std::vector<std::string>{"link.jsonl", "t.jsonl"});
 }
@@ -73,6 +80,13 @@ TEST_CASE("write errors exit non-zero and name the output", "[cli][outputs]") {
   CHECK_THAT(r.output, Catch::Contains("/dev/full"));
   r = run_vbsim("convert " + kTrace + " -o /dev/full");
   CHECK(r.exit_code != 0);
+  for (const char* other : {"hw --statistics --json /dev/full", "watertight -q --json /dev/full",
+                            "reintersect -q --triangles 2 --children 1 --json /dev/full"}) {
+    r = run_vbsim(other);
+    INFO(other << "\n" << r.output);
+    CHECK(r.exit_code == 1);
+    CHECK_THAT(r.output, Catch::Contains("/dev/full") && Catch::Contains("write failed"));
+  }
   // In-place outputs that do not fail are fine, even twice in one run.
   r = run_vbsim("replay " + kTrace + " -q --stats /dev/null --hits /dev/null");
   CHECK(r.exit_code == 0);

@@ -164,6 +164,31 @@ TEST_CASE("score --mode cycle times every configuration on the traces it scores"
                                 Catch::Contains("### Cycles per ray, small preset, three-half-plane tester"));
 }
 
+// Score reads a trace in blocks of 16384 rays; in cycle mode the cycle-level
+// model replays the whole trace once, streamed (not block by block, which
+// would drain the pipeline at every block boundary), so its cycles are those
+// of one `vbsim replay --mode cycle` also on a trace longer than a block.
+TEST_CASE("score --mode cycle replays a trace longer than a block in one cycle-level run", "[system][score][cycle]") {
+  const auto dir = scratch_dir("score_cycle_blocks");
+  const auto cases = (dir / "paths").string();
+  REQUIRE(run_vbsim("gen paths --rays 4000 --seed 3 -q -o " + cases).exit_code == 0);
+  const auto cyc = (dir / "cycle.json").string(), stats = (dir / "replay.json").string();
+  const RunResult r = run_vbsim("score " + cases + " -q --methods offset-adaptive --testers three-half-plane "
+                                "--mode cycle --preset small --out " + cyc);
+  INFO(r.output);
+  REQUIRE(r.exit_code == 0);
+  REQUIRE(run_vbsim("replay " + cases + "/paths.jsonl -q --mode cycle --preset small -m offset-adaptive --stats " +
+                    stats).exit_code == 0);
+  const json c = json::parse(read_file(cyc)), replay = json::parse(read_file(stats));
+  REQUIRE(replay["rays"].get<int64_t>() > 16384);
+  const json* row = find_row(c, "paths", "offset-adaptive", "three-half-plane", "all");
+  REQUIRE(row);
+  CHECK((*row)["rays"] == replay["rays"]);
+  CHECK((*row)["counts"] == replay["verdicts"]);
+  CHECK((*row)["cycle"]["rays"] == replay["rays"]);
+  CHECK((*row)["cycle"]["cycles"] == replay["hw"]["cycles"]);
+}
+
 TEST_CASE("score rejects bad input with a clear message", "[system][score][errors]") {
   const auto dir = scratch_dir("score_errors");
   const std::string bunny = source_dir() + "/traces/bunny";

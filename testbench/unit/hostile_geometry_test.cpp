@@ -152,10 +152,10 @@ TEST_CASE("hostile geometry: every ray answered and counted, camera rays exactly
 }
 
 // The offset methods on children of degenerate, huge and denormal parents: a
-// zero or non-finite geometric normal reaches offset_adaptive's integer ulp
-// offset (origin_offsets.cpp negates INT_MIN there: undefined behaviour that the
-// sanitizer build reports until the offset methods give such rays a defined
-// outcome).
+// zero or non-finite geometric normal must get a defined outcome (the double
+// normal or no offset, counted in offset_fallbacks; docs/methods.md), never
+// Listing 6-1's integer conversion of NaN and negation of INT_MIN, which the
+// sanitizer build reports as undefined behaviour.
 TEST_CASE("hostile geometry: the offset methods answer and count children of degenerate parents", "[hostile][offsets]") {
   replay_hostile_cases(is_offset_method);
 }
