@@ -136,7 +136,6 @@ void RaySource::enter(uint64_t pos, uint64_t now) {
   e.state = State::Ready;
   ++counters_.rays;
   const uint64_t history = base_ > window_ ? base_ - window_ : 0;  // the oldest position still known
-  uint64_t ready = now;
   bool waits = false;
   if (config_.dependencies) {
     const auto child = unresolved_.empty() ? unresolved_.end() : unresolved_.find(tr.id);
@@ -174,7 +173,7 @@ void RaySource::enter(uint64_t pos, uint64_t now) {
     }
   }
   note_position(tr.id, pos);
-  if (!waits) make_ready(pos, ready);
+  if (!waits) make_ready(pos, now);
 }
 
 bool RaySource::find_position(int64_t id, uint64_t& pos) const {
