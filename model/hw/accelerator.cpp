@@ -39,6 +39,13 @@ void add(UnitCounters& sum, const UnitCounters& c) {
   sum.wait_cycles += c.wait_cycles;
 }
 
+/// The counters of a core's unit: the built-in module's, or what the scheduler counted of its replacement.
+void add_unit(UnitCounters& sum, const PipelineUnit* builtin, const UnitCounters& replaced) {
+  if (builtin) return add(sum, builtin->counters());
+  add(sum, replaced);
+  sum.replaced = true;
+}
+
 }  // namespace
 
 AcceleratorChecks::AcceleratorChecks(const HwConfig& config, const Bvh& bvh) {
@@ -48,12 +55,21 @@ AcceleratorChecks::AcceleratorChecks(const HwConfig& config, const Bvh& bvh) {
   check_traversal_depth(bvh);
 }
 
+void check_builtin_lookahead(const MemoryConfig& m) {
+  if (!m.ideal && m.tlm == TlmStyle::ApproximatelyTimed && m.at_lookahead_cycles > m.dram_latency)
+    throw std::invalid_argument(fmt::format(
+        "memory.at_lookahead_cycles: {} is more than memory.dram_latency ({}): the built-in DRAM answers {} cycles "
+        "after a request at the soonest, so the scheduler may not run further ahead",
+        m.at_lookahead_cycles, m.dram_latency, m.dram_latency));
+}
+
 Accelerator::Accelerator(sc_core::sc_module_name name, const HwConfig& config, const Scene& scene, const Bvh& bvh,
                          const ReplayOptions& options, const AcceleratorUnits& units)
     : AcceleratorChecks(config, bvh), sc_core::sc_module(name), config_(config), bvh_(bvh), replayer_(scene, bvh, options),
       clock_(config.clock_mhz), at_(!config.memory.ideal && config.memory.tlm == TlmStyle::ApproximatelyTimed),
       avoidance_in_use_(options.method.validity_bit && options.method.avoidance.policy != AvoidancePolicy::SignOnly),
       cores_("core") {
+  if (!units.external_memory) check_builtin_lookahead(config.memory);
   source_ = std::make_unique<RaySource>("ray_source", config, replayer_);
   if (units.dispatcher) {
     dispatcher_module_ = units.dispatcher("dispatcher", config);
@@ -136,10 +152,33 @@ EngineParts Accelerator::engine_parts() {
   p.timeline = timeline_;
   p.vcd = vcd_;
   p.ray_times = ray_times_;
+  if (l2_ && (!at_ || !memory_l1s_.empty())) {
+    // Arrivals first, then the L1s' misses that leave now (their L2 lookups),
+    // then the L2's requests that leave now: as the approximately timed path
+    // does at each cycle it handles (apply_responses, release_due) before the
+    // cycle's events.
+    p.memory_clock = &memory_clock_;
+    p.memory_step = [this](uint64_t at) {
+      if (!at_) l2_->apply_responses(at);
+      for (L1Cache* l1 : memory_l1s_) l1->send_due(at);
+      if (!at_) l2_->release_lt(at);
+    };
+  }
   return p;
 }
 
 void Accelerator::start_of_simulation() {
+  if (l2_) l2_->set_target_name(memory_target_name());
+  memory_l1s_.clear();
+  if (l2_) {  // the memory's work in time order (hw/memory_clock.h)
+    if (!at_) l2_->set_memory_clock(&memory_clock_);
+    if (config_.memory.l2_lookups_in_time_order)
+      for (RayTestCore& c : cores_)
+        if (L1Cache* l1 = c.l1()) {
+          l1->set_memory_clock(&memory_clock_);
+          memory_l1s_.push_back(l1);
+        }
+  }
   engine_ = make_cycle_engine(engine_parts());
   clock_.start_now();
   activations_ = 0;
@@ -161,6 +200,7 @@ void Accelerator::activate() {
     ++activations_;
     if (stop_ && stop_->load(std::memory_order_relaxed)) engine_->stop();
     limit_ = now + config_.quantum_cycles;
+    if (at_ && !l2_->broken_promise().empty()) throw std::runtime_error(l2_->broken_promise());
     if (at_wait) {
       l2_->apply_responses(now);
       l2_->release_due(now);
@@ -207,8 +247,16 @@ void Accelerator::schedule_next(uint64_t now) {
   next_trigger(clock_.period() * static_cast<double>(next - now), kick_);
 }
 
+std::string Accelerator::memory_target_name() const {
+  if (dram_) return dram_->name();
+  const auto* target = dynamic_cast<const sc_core::sc_object*>(memory_socket_->get_interface());
+  return target ? std::string(target->name())
+                : fmt::format("the memory target bound to {}", memory_socket_->name());
+}
+
 void Accelerator::check() const {
   if (error_) std::rethrow_exception(error_);
+  if (l2_ && !l2_->broken_promise().empty()) throw std::runtime_error(l2_->broken_promise());
   if (!engine_) throw std::runtime_error(std::string(name()) + ": the simulation did not start");
   if (engine_->stopped()) return;
   const uint64_t fed = engine_->rays_fed(), done = sink_->counters().rays;
@@ -232,10 +280,10 @@ HwCounters Accelerator::chip_counters() const {
   c.latency_min = s.latency_min;
   c.latency_max = s.latency_max;
   for (const RayTestCore& core : cores_) {
-    if (const PipelineUnit* u = core.builtin_box()) add(c.box, u->counters());
-    if (const PipelineUnit* u = core.builtin_triangle()) add(c.triangle, u->counters());
-    if (const PipelineUnit* u = core.builtin_avoidance()) add(c.avoidance, u->counters());
     const CoreCounters& k = core.counters;
+    add_unit(c.box, core.builtin_box(), k.replaced_units[CoreCounters::kBox]);
+    add_unit(c.triangle, core.builtin_triangle(), k.replaced_units[CoreCounters::kTriangle]);
+    add_unit(c.avoidance, core.builtin_avoidance(), k.replaced_units[CoreCounters::kAvoidance]);
     for (int i = 0; i < kRayKindCount; ++i) c.avoidance_ops_by_kind[i] += k.avoidance_ops_by_kind[i];
     c.node_fetches += k.node_fetches;
     c.leaf_fetches += k.leaf_fetches;
@@ -348,7 +396,9 @@ nlohmann::json Accelerator::emission_json() const {
           {"mean_dependency_wait_cycles",
            e.children_waited ? static_cast<double>(e.dependency_wait_cycles) / static_cast<double>(e.children_waited)
                              : 0.0},
+          {"missing_parents", missing_parents_name(sc.missing_parents)},
           {"parents_not_found", e.parents_not_found},
+          {"first_parent_not_found", source_->first_parent_not_found()},
           {"lane_cycles",
            {{"busy", s.busy_cycles},
             {"idle_for_dependencies", e.lane_idle_dependency_cycles},

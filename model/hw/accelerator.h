@@ -60,6 +60,11 @@
 
 namespace vbsim::hw {
 
+/// The built-in DRAM keeps an approximately timed lookahead promise: throws
+/// std::invalid_argument naming memory.at_lookahead_cycles when it is above
+/// memory.dram_latency.
+void check_builtin_lookahead(const MemoryConfig& m);
+
 /// The checks an Accelerator's configuration must pass, run before any part of
 /// the module exists (a base class constructed first).
 struct AcceleratorChecks {
@@ -131,6 +136,8 @@ class Accelerator final : private AcceleratorChecks, public sc_core::sc_module, 
   void schedule_next(uint64_t now);
   bool at_busy() const { return at_ && l2_ && (l2_->busy() || l2_->next_response_cycle() != kPendingCycle); }
   EngineParts engine_parts();
+  /// The hierarchical name of the module answering the L2's requests.
+  std::string memory_target_name() const;
 
   HwConfig config_;
   const Bvh& bvh_;
@@ -149,6 +156,8 @@ class Accelerator final : private AcceleratorChecks, public sc_core::sc_module, 
   std::unique_ptr<ResultSink> sink_;
   std::unique_ptr<LineFillIf> no_fill_;  // the L2's answer path for cores whose L1 was replaced
 
+  MemoryClock memory_clock_;
+  std::vector<L1Cache*> memory_l1s_;  // the built-in L1s, whose misses the memory step sends
   std::unique_ptr<CycleEngine> engine_;
   RayTimesSink ray_times_;
   VcdRecorder* vcd_ = nullptr;

@@ -62,6 +62,9 @@ class CacheLevel {
     // The earliest free cycle of any MSHR: the front of the sorted ring.
     const uint64_t free_at = ring_[head_];
     const uint64_t start = free_at > t ? free_at : t;
+    // (start kPendingCycle: every MSHR waits for a fill not known yet; the
+    // caller takes this back, uncount_pending_wait, and counts the wait once
+    // the miss is sent.)
     counters_.mshr_stall_cycles += start - t;
     return {Outcome::Miss, 0, start};
   }
@@ -93,6 +96,9 @@ class CacheLevel {
   /// Counts `cycles` more waited for a free MSHR (a miss that waited for one
   /// whose fill was not known when the miss arrived).
   void count_mshr_wait(uint64_t cycles) { counters_.mshr_stall_cycles += cycles; }
+  /// Takes back what access() added for a miss at `t` that found every MSHR
+  /// waiting for an unknown fill (its start was kPendingCycle).
+  void uncount_pending_wait(uint64_t t) { counters_.mshr_stall_cycles -= kPendingCycle - t; }
   /// The miss of `line` allocated with an unknown fill has its data at `fill`:
   /// the line (if still present) and one MSHR held until an unknown cycle
   /// take that cycle.

@@ -6,6 +6,8 @@
 #include <type_traits>
 #include <vector>
 
+#include <fmt/format.h>
+
 #include "datapath/bvh_stepper.h"
 #include "datapath/testers.h"
 #include "hw/bvh_address_map.h"
@@ -25,8 +27,10 @@ namespace vbsim::hw {
 namespace {
 
 // Event ids: slots 0 .. n-1 (a slot's next step), the source's n .. n + S - 1
-// (RaySource::event_ids: its lanes, its buffer places), and n + S + s for slot
-// s resumed after a read whose data came later (approximately timed memory).
+// (RaySource::event_ids: its lanes, its buffer places), n + S + s for slot
+// s resumed after a read whose data came later (a miss whose fill was not known
+// when it was found). The memory's steps (hw/memory_clock.h) run before the
+// events of their cycle, outside the wheel.
 // Events of one cycle are handled in the order they were scheduled
 // (hw/event_wheel.h).
 constexpr uint32_t kMaxSlots = (1u << 23) - 2;
@@ -48,9 +52,11 @@ class Engine final : public CycleEngine, private SourceHost {
   explicit Engine(const EngineParts& p)
       : cfg_(p.config), replayer_(p.replayer), bvh_(p.bvh), map_(p.bvh, p.config.address_base), source_(p.source),
         dispatcher_(p.dispatcher), builtin_dispatcher_(p.builtin_dispatcher), sink_(p.sink), cores_(p.cores), ideal_(p.builtin_ideal),
-        avoidance_in_use_(p.avoidance_in_use), timeline_(p.timeline), vcd_(p.vcd) {
+        avoidance_in_use_(p.avoidance_in_use), memory_clock_(p.memory_step ? p.memory_clock : &no_memory_work_),
+        memory_step_(p.memory_step), timeline_(p.timeline), vcd_(p.vcd) {
     check_traversal_depth(p.bvh);
     ray_times_ = p.ray_times;
+    events_.set_fence(memory_clock_->due_address());
     const uint32_t slots = source_id_;  // the slots' ids are 0 .. slots - 1
     for (const CoreBinding& c : cores_) {
       l1s_.push_back(c.core->l1());
@@ -68,7 +74,16 @@ class Engine final : public CycleEngine, private SourceHost {
   void advance(const uint64_t& limit) override {
     uint64_t at;
     uint32_t id;
-    while (!stopped_ && events_.take(limit, at, id)) {
+    while (!stopped_) {
+      // A memory step runs before the events of its cycle: the wheel opens no
+      // cycle at or after it (its fence; the memory's work is always for a
+      // later cycle than the one being handled).
+      if (!events_.take(limit, at, id)) {
+        const uint64_t due = memory_clock_->due();
+        if (due >= limit) break;
+        run_memory_step(due);
+        continue;
+      }
       last_handled_ = at;
       const uint32_t next = events_.peek_next();
       if (next < source_id_) prefetch_slot(slots_[next]);
@@ -78,9 +93,13 @@ class Engine final : public CycleEngine, private SourceHost {
     }
   }
   uint64_t last_handled() const override { return last_handled_; }
-  bool finished() const override { return stopped_ || events_.empty(); }
+  bool finished() const override { return stopped_ || (events_.empty() && memory_clock_->due() == kPendingCycle); }
   bool complete() const override { return source_.all_done() && in_flight_ == 0; }
-  uint64_t next_event_cycle() const override { return events_.empty() ? 0 : events_.next_cycle(); }
+  uint64_t next_event_cycle() const override {
+    const uint64_t memory = memory_clock_->due();
+    if (events_.empty()) return memory == kPendingCycle ? 0 : memory;
+    return std::min(events_.next_cycle(), memory);
+  }
   void stop() override { stopped_ = true; }
   bool stopped() const override { return stopped_; }
   uint64_t rays_in_flight() const override { return in_flight_; }
@@ -88,9 +107,19 @@ class Engine final : public CycleEngine, private SourceHost {
   uint64_t rays_done() const override { return done_; }
   uint64_t waiting_for_memory() const override { return parked_; }
   void resume(uint32_t slot, uint64_t ready) override {
+    if (slot >= source_id_ || !slots_[slot].parked || slots_[slot].resumed)
+      throw std::runtime_error(fmt::format("{}: an answer (ReadDoneIf::read_done) for slot {}, which waits for no read",
+                                           instance_name(cores_[std::min<size_t>(slot / cfg_.slots_per_core, cores_.size() - 1)].memory, "memory"), slot));
+    if (ready < last_handled_)
+      throw std::runtime_error(fmt::format(
+          "{}: the read of slot {} issued at cycle {} was answered cycle {}, before cycle {} that the accelerator "
+          "has reached (ReadDoneIf::read_done must not answer a cycle already handled)",
+          instance_name(cores_[slots_[slot].core].memory, "memory"), slot, slots_[slot].requested, ready, last_handled_));
+    slots_[slot].resumed = true;
     --parked_;
     events_.schedule(ready, resumed_id_ + slot);  // the step's second half runs at `ready`
   }
+
   std::string slot_report(size_t max_slots) const override;
 
  private:
@@ -107,8 +136,10 @@ class Engine final : public CycleEngine, private SourceHost {
     TraceRay tr;
     EmittedRay er;
     bool parked = false;       ///< its read's data are not known yet (resume() continues it)
+    bool resumed = false;      ///< parked, and resume() has scheduled its continuation
     uint64_t requested = 0;    ///< parked: the cycle its read was issued
     uint64_t ready = 0, emitted = 0;  ///< when the ray was ready for emission and its emission started
+    uint64_t entered = 0;             ///< when it entered the source's buffer
     /// Bytes from the slot's start that a node step reads: the header (core,
     /// request) and the stepper up to its box tester (3 host lines). Leaf steps
     /// read further; prefetching those lines for every step cost more than it
@@ -123,20 +154,38 @@ class Engine final : public CycleEngine, private SourceHost {
     for (size_t at = 0; at < Slot::kNodeStepBytes; at += 64) __builtin_prefetch(p + at);
   }
 
+  enum Unit { kBox = CoreCounters::kBox, kTriangle = CoreCounters::kTriangle, kAvoidance = CoreCounters::kAvoidance,
+              kUnits };
   static constexpr bool kBuiltinUnits = !std::is_same_v<Memory, MemoryReadIf>;
   // One operation of a core's unit: the built-in module directly, or through its interface.
   __attribute__((always_inline)) static UnitSchedule box_op(const CoreBinding& c, uint64_t ready, uint64_t now) {
     if constexpr (kBuiltinUnits) return c.box_builtin->schedule_inline(ready, now);
-    else return c.box->schedule(ready, now);
+    else return c.box_builtin ? c.box->schedule(ready, now) : replaced_op(c, kBox, c.box, ready, now);
   }
   __attribute__((always_inline)) static UnitSchedule triangle_op(const CoreBinding& c, uint64_t ready, uint64_t now) {
     if constexpr (kBuiltinUnits) return c.triangle_builtin->schedule_inline(ready, now);
-    else return c.triangle->schedule(ready, now);
+    else return c.triangle_builtin ? c.triangle->schedule(ready, now) : replaced_op(c, kTriangle, c.triangle, ready, now);
   }
   __attribute__((always_inline)) static UnitSchedule avoidance_op(const CoreBinding& c, uint64_t ready,
                                                                   uint64_t now) {
     if constexpr (kBuiltinUnits) return c.avoidance_builtin->schedule_inline(ready, now);
-    else return c.avoidance->schedule(ready, now);
+    else
+      return c.avoidance_builtin ? c.avoidance->schedule(ready, now)
+                                 : replaced_op(c, kAvoidance, c.avoidance, ready, now);
+  }
+  /// An operation of a replacement unit, whose answer is checked against
+  /// PipelineIf's contract and counted here (a built-in unit counts its own).
+  static UnitSchedule replaced_op(const CoreBinding& c, int unit, PipelineIf* u, uint64_t ready, uint64_t now) {
+    const UnitSchedule s = u->schedule(ready, now);
+    if (s.issue < ready || s.done < s.issue)
+      throw std::runtime_error(fmt::format(
+          "{}: an operation ready at cycle {} was scheduled to issue at {} and be done at {}: PipelineIf::schedule "
+          "must answer issue >= ready and done >= issue",
+          instance_name(u, std::string(c.core->name()) + ".unit"), ready, s.issue, s.done));
+    UnitCounters& counted = c.core->counters.replaced_units[unit];
+    ++counted.ops;
+    counted.wait_cycles += s.issue - ready;
+    return s;
   }
 
   /// Slot `id`'s read of `bytes` at `addr`, issued at `now`.
@@ -144,7 +193,16 @@ class Engine final : public CycleEngine, private SourceHost {
                                               uint64_t now) {
     if constexpr (std::is_same_v<Memory, L1Cache>) return l1s_[s.core]->read_direct(addr, bytes, now, id);
     else if constexpr (std::is_same_v<Memory, IdealMemory>) return ideal_->read_inline(addr, bytes, now, id);
-    else return cores_[s.core].memory->read(addr, bytes, now, id);
+    else return checked_read(cores_[s.core], id, addr, bytes, now);
+  }
+  /// A read through MemoryReadIf, its answer checked against the interface's contract.
+  uint64_t checked_read(const CoreBinding& c, uint32_t id, uint64_t addr, uint32_t bytes, uint64_t now) {
+    const uint64_t ready = c.memory->read(addr, bytes, now, id);
+    if (ready == kPendingCycle || ready > now) return ready;
+    throw std::runtime_error(fmt::format(
+        "{}: a read of {} bytes at 0x{:x} issued at cycle {} was answered cycle {}: MemoryReadIf::read must answer "
+        "a later cycle (or kPendingCycle)",
+        instance_name(c.memory, std::string(c.core->name()) + ".memory"), bytes, addr, now, ready));
   }
 
   /// Slot `id`'s next step, s.pending, completes at cycle `at`.
@@ -167,7 +225,6 @@ class Engine final : public CycleEngine, private SourceHost {
 
   // ---- tracing (VCD and timeline; out of line, behind one flag a step) ----
 
-  enum Unit { kBox, kTriangle, kAvoidance, kUnits };
   /// Per core: the VCD signal (operations in flight) and timeline track of each
   /// unit, its busy-slot signal and its memory's track.
   struct CoreTrace {
@@ -245,8 +302,14 @@ class Engine final : public CycleEngine, private SourceHost {
   /// The dispatcher's choice of a core with a free slot, or -1.
   int pick_core() {
     const uint32_t n = static_cast<uint32_t>(cores_.size());
-    return builtin_dispatcher_ ? builtin_dispatcher_->Dispatcher::pick(free_count_.data(), n)
-                               : dispatcher_.pick(free_count_.data(), n);
+    if (builtin_dispatcher_) return builtin_dispatcher_->Dispatcher::pick(free_count_.data(), n);
+    const int core = dispatcher_.pick(free_count_.data(), n);
+    if (core >= 0 ? core < static_cast<int>(n) && free_count_[core] > 0 : core == -1) return core;
+    throw std::runtime_error(fmt::format(
+        "{}: DispatchIf::pick chose core {}, which {}: it must choose a core with a free slot, or -1 (none)",
+        instance_name(&dispatcher_, "dispatcher"), core,
+        core >= 0 && core < static_cast<int>(n) ? "has no free slot"
+                                                : fmt::format("does not exist (the accelerator has {} cores)", n)));
   }
 
   void dispatch(uint32_t core_index, const SourceRay& ray, uint64_t at) {
@@ -263,6 +326,7 @@ class Engine final : public CycleEngine, private SourceHost {
     s.dispatched = at;
     s.ready = ray.ready;
     s.emitted = ray.emitted;
+    s.entered = ray.entered;
     KindStats& ks = replayer_.stats().by_kind[static_cast<int>(s.tr.kind)];
     s.pending = s.stepper.begin(s.er.ray, replayer_.any_hit(s.tr, s.er), ks.candidates, ks.traversal);
     // The root box test: bounds latched with the ray.
@@ -357,9 +421,18 @@ class Engine final : public CycleEngine, private SourceHost {
     schedule_step(ready, id);
   }
 
+  /// The memory step of cycle `due`, which no event of that cycle has come before.
+  __attribute__((noinline)) void run_memory_step(uint64_t due) {
+    if (due < last_handled_) throw std::logic_error("hw: a memory step for a cycle already handled");
+    memory_clock_->take(due);
+    last_handled_ = due;
+    memory_step_(due);
+  }
+
   /// The slot's read has no known data cycle yet: it waits for resume().
   void park(Slot& s, uint64_t now) {
     s.parked = true;
+    s.resumed = false;
     s.requested = now;
     ++parked_;
   }
@@ -389,8 +462,9 @@ class Engine final : public CycleEngine, private SourceHost {
     core.core->free_slots.push_back(id);
     ++free_count_[s.core];
     if (__builtin_expect(tracing_, 0)) trace_occupancy(s.core, now, -1);
-    if (ray_times_) ray_times_({s.trace_index, s.tr.id, s.tr.parent, s.ready, s.emitted, s.dispatched, now, s.core,
-                                id - cores_[s.core].core->first_slot()});
+    if (ray_times_)
+      ray_times_({s.trace_index, s.tr.id, s.tr.parent, s.ready, s.emitted, s.dispatched, now, s.core,
+                  id - cores_[s.core].core->first_slot(), s.entered});
     source_.on_finish(s.trace_index, now);  // its children's wait and the window move on
     source_.on_slot_free(now);              // a held ray takes the slot
   }
@@ -413,6 +487,9 @@ class Engine final : public CycleEngine, private SourceHost {
   const uint64_t model_stride_[2] = {BvhAddressMap::kTriangleBytes, BvhAddressMap::kNodeBytes};
   uint32_t source_id_ = slot_count(cfg_);
   uint32_t resumed_id_ = source_id_ + source_.event_ids();
+  MemoryClock no_memory_work_{0};  // the clock without a memory step: never asked for a cycle
+  MemoryClock* memory_clock_;
+  std::function<void(uint64_t)> memory_step_;
   EventWheel events_{resumed_id_ + source_id_};
   std::vector<Slot> slots_;
   bool stopped_ = false;

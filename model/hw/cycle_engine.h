@@ -19,6 +19,7 @@
 
 #include "hw/hw_config.h"
 #include "hw/hw_counters.h"
+#include "hw/memory_clock.h"
 #include "hw/ray_feed.h"
 #include "hw/timeline_recorder.h"
 #include "hw/unit_interfaces.h"
@@ -45,12 +46,12 @@ class CycleEngine {
   virtual void advance(const uint64_t& limit) = 0;
   /// The cycle of the last event handled.
   virtual uint64_t last_handled() const = 0;
-  /// True when no event is pending (or the run was stopped). Rays may still
-  /// wait for memory (waiting_for_memory()).
+  /// True when no event and no memory step is pending (or the run was
+  /// stopped). Rays may still wait for memory (waiting_for_memory()).
   virtual bool finished() const = 0;
   /// True when every ray the source read has finished and the trace has ended.
   virtual bool complete() const = 0;
-  /// Cycle of the next event; meaningful when !finished().
+  /// Cycle of the next event or memory step; meaningful when !finished().
   virtual uint64_t next_event_cycle() const = 0;
   /// Ends the run at the next advance: rays in flight are dropped.
   virtual void stop() = 0;
@@ -98,6 +99,10 @@ struct EngineParts {
   TimelineRecorder* timeline = nullptr;
   VcdRecorder* vcd = nullptr;
   RayTimesSink ray_times;  ///< every finished ray's cycles (may be empty)
+  /// The memory's work in time order (may be null): `memory_step(c)` runs for
+  /// every cycle c the clock was asked for, before the events of cycle c.
+  MemoryClock* memory_clock = nullptr;
+  std::function<void(uint64_t)> memory_step;
 };
 
 /// The scheduler for `parts` (which outlive it). Throws std::runtime_error when

@@ -11,8 +11,11 @@
 // straight into a bucket was scheduled after those moved into it, so each
 // bucket stays in scheduling order). Taking an event follows the current
 // cycle's list; an event scheduled for the cycle being handed out joins its
-// end. Nothing is allocated after construction (the heap's room is reserved
-// for every id).
+// end. A fence (set_fence: a cycle the wheel reads whenever it opens a cycle)
+// keeps it from opening a cycle at or after the fence, so that work outside
+// the wheel (the memory step, hw/memory_clock.h) can run before the events of
+// its cycle at no cost per event. Nothing is allocated after construction (the
+// heap's room is reserved for every id).
 #pragma once
 #include <algorithm>
 #include <cstdint>
@@ -34,6 +37,11 @@ class EventWheel {
   }
 
   bool empty() const { return pending_ == 0; }
+
+  /// take() opens no cycle at or after `*fence` (which outlives the wheel; it
+  /// may change between takes, and is never at or before a cycle handed out
+  /// while that cycle still has events). Default: no fence.
+  void set_fence(const uint64_t* fence) { fence_ = fence; }
 
   /// Schedules `id` (not pending) at cycle `at`, which is not before the cycle
   /// last handed out.
@@ -96,7 +104,7 @@ class EventWheel {
   __attribute__((noinline)) bool open_next(uint64_t limit) {
     if (pending_ == 0) return false;
     const uint64_t next = next_cycle();
-    if (next >= limit) return false;
+    if (next >= limit || next >= *fence_) return false;
     open_batch(next);
     return true;
   }
@@ -158,6 +166,8 @@ class EventWheel {
   std::vector<Far> overflow_;       // a min-heap by (cycle, scheduling order)
   uint64_t far_order_ = 0;
   uint64_t pending_ = 0;
+  static constexpr uint64_t kNoFence = ~uint64_t{0};
+  const uint64_t* fence_ = &kNoFence;
 };
 
 }  // namespace vbsim::hw

@@ -63,6 +63,7 @@ void read_memory(Fields& parent, MemoryConfig& m) {
     return true;
   });
   f.integer("at_lookahead_cycles", m.at_lookahead_cycles, 1, 1000000);
+  f.boolean("l2_lookups_in_time_order", m.l2_lookups_in_time_order);
   check_cache(parent.file(), field + ".l1", m.l1);
   check_cache(parent.file(), field + ".l2", m.l2);
 }
@@ -74,7 +75,18 @@ bool parse_dispatch(const std::string& s, DispatchPolicy& out) {
   return true;
 }
 
+bool parse_missing_parents(const std::string& s, MissingParents& out) {
+  if (s == "error") out = MissingParents::Error;
+  else if (s == "independent") out = MissingParents::Independent;
+  else return false;
+  return true;
+}
+
 }  // namespace
+
+const char* missing_parents_name(MissingParents m) {
+  return m == MissingParents::Independent ? "independent" : "error";
+}
 
 const char* dispatch_policy_name(DispatchPolicy p) {
   return p == DispatchPolicy::RoundRobin ? "round-robin" : "least-loaded";
@@ -120,8 +132,10 @@ void apply_hw_config(const nlohmann::json& j, const std::string& file, HwConfig&
     fs.integer("sign_bit_cycles", cfg.source.sign_bit_cycles, 0, 100000);
     fs.integer("emission_op_cycles", cfg.source.emission_op_cycles, 0, 100000);
     fs.integer("rays_per_cycle", cfg.source.rays_per_cycle, 1, 64);
-    fs.integer("window", cfg.source.window, 1, 1u << 20);
+    fs.integer("window", cfg.source.window, 0, 1u << 20);
     fs.boolean("dependencies", cfg.source.dependencies);
+    fs.name("missing_parents", [&](const std::string& s) { return parse_missing_parents(s, cfg.source.missing_parents); },
+            "error, independent");
     fs.boolean("bundles", cfg.source.bundles);
     fs.integer("bundle_cycles", cfg.source.bundle_cycles, 0, 100000);
     fs.integer("bundle_max", cfg.source.bundle_max, 1, 64);
@@ -177,6 +191,7 @@ nlohmann::json hw_config_json(const HwConfig& c) {
             {"rays_per_cycle", c.source.rays_per_cycle},
             {"window", c.source.window},
             {"dependencies", c.source.dependencies},
+            {"missing_parents", missing_parents_name(c.source.missing_parents)},
             {"bundles", c.source.bundles},
             {"bundle_cycles", c.source.bundle_cycles},
             {"bundle_max", c.source.bundle_max}}},
@@ -193,7 +208,8 @@ nlohmann::json hw_config_json(const HwConfig& c) {
             {"dram_bytes_per_cycle", m.dram_bytes_per_cycle},
             {"dram_max_outstanding", m.dram_max_outstanding},
             {"tlm", tlm_style_name(m.tlm)},
-            {"at_lookahead_cycles", m.at_lookahead_cycles}}},
+            {"at_lookahead_cycles", m.at_lookahead_cycles},
+            {"l2_lookups_in_time_order", m.l2_lookups_in_time_order}}},
           {"sim",
            {{"quantum_cycles", c.quantum_cycles},
             {"latency_bucket_cycles", c.latency_bucket_cycles},

@@ -19,6 +19,12 @@ struct UnitConfig {
   uint32_t issue_interval = 1;  ///< cycles between two issues into one pipeline
 };
 
+/// What the ray source does with a child whose parent is not among the rays
+/// of the parent window before it: stop with an error naming the child's line,
+/// or replay it as an independent ray (counted, with a warning).
+enum class MissingParents { Error, Independent };
+const char* missing_parents_name(MissingParents m);
+
 /// The ray source: the ray-emission interface in front of the dispatcher.
 struct SourceConfig {
   uint32_t issue_interval = 1;      ///< cycles one emission lane takes per ray, at least
@@ -30,6 +36,7 @@ struct SourceConfig {
   /// A child ray waits for its parent's result (plus the shading latency);
   /// false: every ray independent, as a trace of unrelated queries.
   bool dependencies = true;
+  MissingParents missing_parents = MissingParents::Error;
   /// Consecutive trace rays with the same parent and origin go through one
   /// bundle call of the emission API (the patent's "emit a bundle of rays").
   bool bundles = false;

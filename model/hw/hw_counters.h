@@ -13,6 +13,9 @@ namespace vbsim::hw {
 struct UnitCounters {
   uint64_t ops = 0;          ///< operations issued (all cores)
   uint64_t wait_cycles = 0;  ///< cycles operations waited for a free pipeline ("pipeline full")
+  /// Chip-wide totals: a core's unit of this kind is a replacement, whose
+  /// pipelines are its own (its utilisation is not known).
+  bool replaced = false;
 };
 
 /// SystemC's view of one run.
@@ -32,6 +35,11 @@ struct CoreCounters {
   uint64_t refill_wait_cycles = 0;  ///< stack refill reads: cycles from request to data
   uint64_t spills = 0;              ///< stack entries pushed past the on-chip depth
   std::array<uint64_t, kRayKindCount> avoidance_ops_by_kind{};  ///< suspects sent to its avoidance unit
+  /// Operations of the units that replacements took the place of, counted by
+  /// the scheduler from their answers (issue - ready: the wait); a built-in
+  /// unit counts its own.
+  enum { kBox, kTriangle, kAvoidance };
+  std::array<UnitCounters, 3> replaced_units{};
 };
 
 /// What the ray source counted.

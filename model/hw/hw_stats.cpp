@@ -13,12 +13,24 @@ double utilisation(const UnitCounters& c, const UnitConfig& u, const HwConfig& c
   return per(static_cast<double>(c.ops) * u.issue_interval, static_cast<double>(cycles) * u.count * cfg.cores);
 }
 
+/// The utilisation, or null for a replaced unit (its pipelines are its own).
+nlohmann::json utilisation_json(const UnitCounters& c, const UnitConfig& u, const HwConfig& cfg, uint64_t cycles) {
+  return c.replaced ? nlohmann::json(nullptr) : nlohmann::json(utilisation(c, u, cfg, cycles));
+}
+
+/// A utilisation in the table: a percentage, or "n/a" for a replaced unit.
+std::string utilisation_text(const UnitCounters& c, const UnitConfig& u, const HwConfig& cfg, uint64_t cycles) {
+  return c.replaced ? std::string("  n/a ") : fmt::format("{:5.1f}%", 100 * utilisation(c, u, cfg, cycles));
+}
+
 nlohmann::json unit_json(const UnitCounters& c, const UnitConfig& u, const HwConfig& cfg, uint64_t cycles,
                          uint64_t rays) {
-  return {{"ops", c.ops},
-          {"ops_per_ray", per(c.ops, rays)},
-          {"pipeline_full_cycles", c.wait_cycles},
-          {"utilisation", utilisation(c, u, cfg, cycles)}};
+  nlohmann::json j = {{"ops", c.ops},
+                      {"ops_per_ray", per(c.ops, rays)},
+                      {"pipeline_full_cycles", c.wait_cycles},
+                      {"utilisation", utilisation_json(c, u, cfg, cycles)}};
+  if (c.replaced) j["replaced"] = true;
+  return j;
 }
 
 }  // namespace
@@ -36,9 +48,9 @@ nlohmann::json hw_stats_json(const HwReport& r) {
   j["units"] = {{"box", unit_json(c.box, cfg.box, cfg, c.cycles, c.rays)},
                 {"triangle", unit_json(c.triangle, cfg.triangle, cfg, c.cycles, c.rays)},
                 {"avoidance", unit_json(c.avoidance, cfg.avoidance, cfg, c.cycles, c.rays)}};
-  j["utilisation"] = {{"box", utilisation(c.box, cfg.box, cfg, c.cycles)},
-                      {"triangle", utilisation(c.triangle, cfg.triangle, cfg, c.cycles)},
-                      {"avoidance", utilisation(c.avoidance, cfg.avoidance, cfg, c.cycles)},
+  j["utilisation"] = {{"box", utilisation_json(c.box, cfg.box, cfg, c.cycles)},
+                      {"triangle", utilisation_json(c.triangle, cfg.triangle, cfg, c.cycles)},
+                      {"avoidance", utilisation_json(c.avoidance, cfg.avoidance, cfg, c.cycles)},
                       {"slots", per(c.slot_cycles, static_cast<double>(c.cycles) * slots)},
                       {"source", per(c.source_busy_cycles, c.cycles)}};
   // Waits in slot-cycles (summed over rays), and their share of all slot-cycles.
@@ -95,10 +107,10 @@ std::string hw_summary_table(const HwReport& r) {
                               cfg.slots_per_core, cfg.clock_mhz, cfg.memory.ideal ? "ideal" : "hierarchy");
   s += fmt::format("  cycles {:>12}   rays/cycle {:>8.4f}   rays/s at clock {:>12.4g}\n", c.cycles,
                    per(c.rays, c.cycles), per(c.rays, c.cycles) * cfg.clock_mhz * 1e6);
-  s += fmt::format("  utilisation  box {:5.1f}%  triangle {:5.1f}%  avoidance {:5.1f}%  slots {:5.1f}%\n",
-                   100 * utilisation(c.box, cfg.box, cfg, c.cycles),
-                   100 * utilisation(c.triangle, cfg.triangle, cfg, c.cycles),
-                   100 * utilisation(c.avoidance, cfg.avoidance, cfg, c.cycles),
+  s += fmt::format("  utilisation  box {}  triangle {}  avoidance {}  slots {:5.1f}%\n",
+                   utilisation_text(c.box, cfg.box, cfg, c.cycles),
+                   utilisation_text(c.triangle, cfg.triangle, cfg, c.cycles),
+                   utilisation_text(c.avoidance, cfg.avoidance, cfg, c.cycles),
                    100 * per(c.slot_cycles, static_cast<double>(c.cycles) * cfg.cores * cfg.slots_per_core));
   s += fmt::format("  waits (share of slot-cycles)  memory {:.1f}%  box full {:.1f}%  triangle full {:.1f}%  "
                    "avoidance full {:.1f}%  stack refill {:.1f}%\n",

@@ -1,8 +1,8 @@
 // IdPositionMap: ray id -> trace position for the rays a ray source remembers
 // (at most `capacity` at once), without allocating after construction: open
-// addressing with linear probing in a power-of-two table at most half full,
-// and backward-shift deletion (no tombstones), so lookups stay short however
-// long the trace.
+// addressing with linear probing in a power-of-two table at most half full
+// (16 bytes a slot), and backward-shift deletion (no tombstones), so lookups
+// stay short however long the trace.
 #pragma once
 #include <cstdint>
 #include <vector>
@@ -21,12 +21,12 @@ class IdPositionMap {
   /// Sets `id`'s position (the map holds fewer than `capacity` ids).
   void set(int64_t id, uint64_t pos) {
     size_t i = home(id);
-    while (slots_[i].used && slots_[i].id != id) i = (i + 1) & mask_;
-    slots_[i] = {id, pos, true};
+    while (used(i) && slots_[i].id != id) i = (i + 1) & mask_;
+    slots_[i] = {id, pos};
   }
   /// The position of `id`, or false.
   bool find(int64_t id, uint64_t& pos) const {
-    for (size_t i = home(id); slots_[i].used; i = (i + 1) & mask_)
+    for (size_t i = home(id); used(i); i = (i + 1) & mask_)
       if (slots_[i].id == id) {
         pos = slots_[i].pos;
         return true;
@@ -36,12 +36,12 @@ class IdPositionMap {
   /// Forgets `id` when it is at position `pos` (a later ray with the same id stays).
   void erase(int64_t id, uint64_t pos) {
     size_t i = home(id);
-    while (slots_[i].used && !(slots_[i].id == id && slots_[i].pos == pos)) i = (i + 1) & mask_;
-    if (!slots_[i].used) return;
+    while (used(i) && !(slots_[i].id == id && slots_[i].pos == pos)) i = (i + 1) & mask_;
+    if (!used(i)) return;
     // Backward shift: move later entries of the probe run into the hole when their home allows.
     for (size_t hole = i, j = (i + 1) & mask_;; j = (j + 1) & mask_) {
-      if (!slots_[j].used) {
-        slots_[hole].used = false;
+      if (!used(j)) {
+        slots_[hole].pos = kEmpty;
         return;
       }
       const size_t h = home(slots_[j].id);
@@ -54,11 +54,12 @@ class IdPositionMap {
   }
 
  private:
+  static constexpr uint64_t kEmpty = ~uint64_t{0};  ///< the position of an unused slot
   struct Slot {
     int64_t id = 0;
-    uint64_t pos = 0;
-    bool used = false;
+    uint64_t pos = kEmpty;
   };
+  bool used(size_t i) const { return slots_[i].pos != kEmpty; }
   size_t home(int64_t id) const {
     uint64_t x = static_cast<uint64_t>(id) * 0x9E3779B97F4A7C15ull;  // Fibonacci hashing
     return static_cast<size_t>(x >> 20) & mask_;

@@ -17,6 +17,7 @@ L1Cache::L1Cache(sc_core::sc_module_name name, const CacheConfig& config, uint32
   declare_stat("reads", "reads", "reads by the core (a node, a leaf's triangles, a stack refill)", reads_);
   declare_stat("bytes", "bytes", "bytes the core read", bytes_);
   declare_stats(cache_level_statistics(level_, "the L2", misses_sent_late_));
+
 }
 
 void L1Cache::connect_fast(L2Cache* l2) {
@@ -59,8 +60,18 @@ __attribute__((always_inline)) inline uint64_t L1Cache::read_line(uint64_t line,
     return a.ready;
   }
   if (__builtin_expect(a.start == kPendingCycle, 0)) {  // every MSHR waits for a fill not known yet
+    level_.uncount_pending_wait(now);
     level_.install<L1Ways>(line, kPendingCycle, now);
     defer_miss(line, slot, now);
+    return kPendingCycle;
+  }
+  // Waits for an MSHR (start > now): with l2_lookups_in_time_order looked up in
+  // the L2 when it leaves; else now, stamped with that cycle (its wait is in
+  // mshr_stall_cycles). The clock first: one predictable test on the usual path.
+  if (__builtin_expect(clock_ != nullptr, 0) && a.start != now) {
+    level_.install<L1Ways>(line, kPendingCycle, now);
+    level_.hold_mshr(kPendingCycle);
+    defer_until(line, slot, now, a.start);
     return kPendingCycle;
   }
   const uint64_t fill = next_level<L2Ways>(line, a.start + level_.hit_latency());
@@ -102,11 +113,30 @@ void L1Cache::trace_miss(uint64_t start, uint64_t fill) {
 
 // ---- the pending path: an approximately timed memory behind the L2 ----
 
-void L1Cache::wait_for(uint64_t line, uint32_t slot, uint64_t t) { waiting_[line].push_back({slot, t}); }
+void L1Cache::wait_for(uint64_t line, uint32_t slot, uint64_t t) { waiting_.add(line, slot, t); }
 
 void L1Cache::defer_miss(uint64_t line, uint32_t slot, uint64_t t) {
   deferred_.push_back({line, t});
   wait_for(line, slot, t);
+}
+
+void L1Cache::defer_until(uint64_t line, uint32_t slot, uint64_t t, uint64_t start) {
+  timed_.push_back({start, timed_order_++, line});
+  std::push_heap(timed_.begin(), timed_.end(), std::greater<>());
+  clock_->request(start);
+  wait_for(line, slot, t);
+}
+
+void L1Cache::send_due(uint64_t now) {
+  while (!timed_.empty() && timed_.front().cycle <= now) {
+    const TimedMiss m = timed_.front();
+    std::pop_heap(timed_.begin(), timed_.end(), std::greater<>());
+    timed_.pop_back();
+    if (vcd_) vcd_->add(vcd_misses_, m.cycle, +1);
+    const uint64_t t = m.cycle + level_.hit_latency();
+    const uint64_t fill = l2_ ? l2_->read_line_inline<0>(m.line, t, core_) : next->read_line(m.line, t, core_);
+    if (fill != kPendingCycle) line_filled(m.line, fill);  // answers its waiters (and sends deferred misses)
+  }
 }
 
 uint64_t L1Cache::pend_read(uint32_t slot, uint32_t lines, uint64_t ready) {
@@ -127,17 +157,7 @@ void L1Cache::answer(uint32_t slot, uint64_t ready) {
 void L1Cache::line_filled(uint64_t line, uint64_t fill) {
   level_.resolve(line, fill);
   if (vcd_) vcd_->add(vcd_misses_, fill, -1);  // the miss's +1 went in when it was sent
-  const auto it = waiting_.find(line);
-  if (it != waiting_.end()) {
-    std::vector<Waiter> waiters = std::move(it->second);
-    waiting_.erase(it);
-    for (const Waiter& w : waiters) {
-      // A request that turned out to arrive at or after the fill is a hit.
-      const bool hit = w.t >= fill;
-      if (hit) level_.recount_merge_as_hit();
-      answer(w.slot, hit ? w.t + level_.hit_latency() : fill);
-    }
-  }
+  waiting_.fill(line, fill, level_, [this](uint32_t slot, uint64_t ready) { answer(slot, ready); });
   send_deferred();
 }
 
@@ -150,6 +170,12 @@ void L1Cache::send_deferred() {
     level_.count_mshr_wait(start - d.t);
     ++misses_sent_late_;
     level_.hold_mshr(kPendingCycle);
+    if (clock_) {  // looked up in the L2 when it leaves, as every miss that waited for an MSHR
+      timed_.push_back({start, timed_order_++, d.line});
+      std::push_heap(timed_.begin(), timed_.end(), std::greater<>());
+      clock_->request(start);
+      continue;
+    }
     if (vcd_) vcd_->add(vcd_misses_, start, +1);
     const uint64_t fill = l2_ ? l2_->read_line_inline<0>(d.line, start + level_.hit_latency(), core_)
                               : next->read_line(d.line, start + level_.hit_latency(), core_);

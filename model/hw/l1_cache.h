@@ -5,11 +5,21 @@
 // read's data are ready with its last line; a miss takes the MSHR that frees
 // first, allocates its line at once and holds the MSHR until the fill.
 //
-// Behind an approximately timed DRAM a miss's fill may not be known when it is
-// sent (kPendingCycle): the read is then answered kPendingCycle and the core
-// gets the cycle through `done` (ReadDoneIf) once the L2 calls line_filled().
-// Requests waiting for such a line, and misses waiting for an MSHR whose fill is
-// unknown, are held here until then (the rare path, out of line).
+// A miss that must wait for an MSHR (every MSHR busy until a known later cycle)
+// is looked up in the L2 at the cycle it leaves, not when it is found: it
+// takes the MSHR and allocates its line at once (fill not known), asks the
+// memory clock (hw/memory_clock.h) for that cycle, and the accelerator's memory
+// step then sends it (send_due), so that the shared L2 sees every core's
+// lookups in time order: memory.l2_lookups_in_time_order. Otherwise (the
+// default, faster) it is looked up at once, stamped with that cycle (its wait
+// is in mshr_stall_cycles): the L2 takes it before lookups stamped earlier.
+//
+// A miss's fill may not be known when it is sent (kPendingCycle: an L2 miss
+// whose request has not reached the memory target yet): the read is then
+// answered kPendingCycle and the core gets the cycle through `done`
+// (ReadDoneIf) once the L2 calls line_filled(). Requests waiting for such a
+// line, and misses waiting for an MSHR whose fill is unknown, are held here
+// until then (out of line).
 #pragma once
 #include <cstdint>
 #include <deque>
@@ -19,6 +29,8 @@
 #include <systemc>
 
 #include "hw/cache_level.h"
+#include "hw/line_waiters.h"
+#include "hw/memory_clock.h"
 #include "hw/memory_config.h"
 #include "hw/stat_provider.h"
 #include "hw/unit_interfaces.h"
@@ -52,6 +64,11 @@ class L1Cache final : public sc_core::sc_module, public MemoryReadIf, public Lin
   uint64_t read_direct(uint64_t addr, uint32_t bytes, uint64_t now, uint32_t slot);
   void line_filled(uint64_t line, uint64_t fill) override;
 
+  /// Asks `clock` for the cycles its MSHR-waiting misses leave (null: none).
+  void set_memory_clock(MemoryClock* clock) { clock_ = clock; }
+  /// Sends the misses that leave at or before `now` to the L2.
+  void send_due(uint64_t now);
+
   /// Asks the host's caches for the tag sets a read of `addr` looks up first
   /// (its first line in this L1 and in the L2); changes nothing.
   void prefetch(uint64_t addr) const {
@@ -83,6 +100,8 @@ class L1Cache final : public sc_core::sc_module, public MemoryReadIf, public Lin
   // The pending path (approximately timed memory only).
   void wait_for(uint64_t line, uint32_t slot, uint64_t t);
   void defer_miss(uint64_t line, uint32_t slot, uint64_t t);
+  /// A miss found at `t` that leaves at `start` (> t): sent by send_due.
+  void defer_until(uint64_t line, uint32_t slot, uint64_t t, uint64_t start);
   uint64_t pend_read(uint32_t slot, uint32_t lines, uint64_t ready);
   void answer(uint32_t slot, uint64_t ready);
   void send_deferred();
@@ -97,10 +116,6 @@ class L1Cache final : public sc_core::sc_module, public MemoryReadIf, public Lin
   uint64_t reads_ = 0, bytes_ = 0, first_now_ = 0, last_ready_ = 0;
   uint64_t misses_sent_late_ = 0;  ///< misses that waited for an MSHR whose fill was unknown
 
-  struct Waiter {
-    uint32_t slot;
-    uint64_t t;  ///< the request's cycle
-  };
   struct PendingRead {
     uint32_t lines = 0;  ///< lines still unknown
     uint64_t ready = 0;  ///< the latest known line's ready cycle
@@ -108,9 +123,16 @@ class L1Cache final : public sc_core::sc_module, public MemoryReadIf, public Lin
   struct DeferredMiss {
     uint64_t line, t;
   };
-  std::unordered_map<uint64_t, std::vector<Waiter>> waiting_;  // by line
+  LineWaiters waiting_;  // slots waiting for pending lines
   std::vector<PendingRead> pending_;                           // by slot - first_slot_
   std::deque<DeferredMiss> deferred_;
+  struct TimedMiss {
+    uint64_t cycle, order, line;
+    bool operator>(const TimedMiss& o) const { return cycle != o.cycle ? cycle > o.cycle : order > o.order; }
+  };
+  std::vector<TimedMiss> timed_;  // a min-heap by (leaving cycle, order found)
+  uint64_t timed_order_ = 0;
+  MemoryClock* clock_ = nullptr;
   // Tracing (VCD of the misses in flight; null: none).
   VcdRecorder* vcd_ = nullptr;
   uint32_t vcd_misses_ = VcdRecorder::kNoSignal;

@@ -21,7 +21,7 @@ L2Cache::L2Cache(sc_core::sc_module_name name, const CacheConfig& config, const 
   prepare(lt_payload_, 0);
   declare_stat("dram_requests", "transactions", "TLM-2.0 read transactions sent through the socket", dram_requests_);
   declare_stat("late_responses", "transactions",
-               "approximately timed responses that arrived for a cycle already handled (taken one cycle later)",
+               "approximately timed responses sooner than the lookahead promises (the run stops with an error)",
                late_responses_);
   declare_stats(cache_level_statistics(level_, "DRAM", misses_sent_late_));
 }
@@ -61,14 +61,26 @@ void L2Cache::prepare(tlm::tlm_generic_payload& trans, uint64_t line) const {
 
 uint64_t L2Cache::dram_read(uint64_t line, uint64_t send) {
   ++dram_requests_;
-  if (style_ == TlmStyle::LooselyTimed) return dram_read_lt(line, send);
+  // Loosely timed without a memory clock (a bare memory rig): at once, in call order.
+  if (style_ == TlmStyle::LooselyTimed && !memory_clock_) return transport_lt(line, send);
   sends_.push({send, order_++, line});
   ++outstanding_;
-  if (on_request_) on_request_(send);
+  if (style_ == TlmStyle::LooselyTimed) memory_clock_->request(send);
+  else if (on_request_) on_request_(send);
   return kPendingCycle;
 }
 
-uint64_t L2Cache::dram_read_lt(uint64_t line, uint64_t send) {
+void L2Cache::release_lt(uint64_t now) {
+  while (!sends_.empty() && sends_.top().cycle <= now) {
+    const Send s = sends_.top();
+    sends_.pop();
+    const uint64_t fill = transport_lt(s.line, s.cycle);
+    responses_.push({fill, order_++, s.line});  // applied at its cycle, as a response would be
+    memory_clock_->request(fill);
+  }
+}
+
+uint64_t L2Cache::transport_lt(uint64_t line, uint64_t send) {
   lt_payload_.set_address(line << line_shift_);
   lt_payload_.set_response_status(tlm::TLM_INCOMPLETE_RESPONSE);
   sc_core::sc_time delay = clock_.delay_to(send);
@@ -83,7 +95,7 @@ uint64_t L2Cache::dram_read_lt(uint64_t line, uint64_t send) {
 
 // ---- approximately timed ----
 
-void L2Cache::wait_for(uint64_t line, uint32_t core, uint64_t t) { waiting_[line].push_back({core, t}); }
+void L2Cache::wait_for(uint64_t line, uint32_t core, uint64_t t) { waiting_.add(line, core, t); }
 
 void L2Cache::defer_miss(uint64_t line, uint32_t core, uint64_t t) {
   deferred_.push_back({line, t});
@@ -154,9 +166,17 @@ void L2Cache::arrived(tlm::tlm_generic_payload& trans, const sc_core::sc_time& d
   const uint64_t sent = it == in_flight_send_cycle_.end() ? 0 : it->second;
   if (it != in_flight_send_cycle_.end()) in_flight_send_cycle_.erase(it);
   uint64_t cycle = std::max(clock_.cycle_after(delay), sent + 1);
-  if (cycle <= handled_) {
-    cycle = handled_ + 1;
-    ++late_responses_;
+  // The target's promise: no response sooner than lookahead_ cycles after its
+  // request (the scheduler may have run that far ahead). Broken, the run's
+  // figures may be wrong: it stops with an error naming the target.
+  if (cycle < sent + lookahead_ || cycle <= handled_) {
+    if (late_responses_++ == 0)
+      broken_promise_ = fmt::format(
+          "{}: answered the read of 0x{:x} sent at cycle {} for cycle {}, {} cycles after the request (the "
+          "accelerator had handled cycle {}), but memory.at_lookahead_cycles = {} promises that no response comes "
+          "sooner than that many cycles after its request: set it to at most the target's shortest latency",
+          target_name_, trans.get_address(), sent, cycle, cycle - sent, handled_, lookahead_);
+    if (cycle <= handled_) cycle = handled_ + 1;
   }
   const uint64_t line = trans.get_address() >> line_shift_;
   responses_.push({cycle, order_++, line});
@@ -181,16 +201,8 @@ void L2Cache::apply_responses(uint64_t now) {
 
 void L2Cache::resolve(uint64_t line, uint64_t fill) {
   level_.resolve(line, fill);
-  const auto it = waiting_.find(line);
-  if (it != waiting_.end()) {
-    std::vector<Waiter> waiters = std::move(it->second);
-    waiting_.erase(it);
-    for (const Waiter& w : waiters) {
-      const bool hit = w.t >= fill;  // a request that turned out to arrive at or after the fill
-      if (hit) level_.recount_merge_as_hit();
-      fill_out[w.core]->line_filled(line, hit ? w.t + level_.hit_latency() : fill);
-    }
-  }
+  waiting_.fill(line, fill, level_,
+                [this, line](uint32_t core, uint64_t ready) { fill_out[core]->line_filled(line, ready); });
   send_deferred();
 }
 

@@ -6,7 +6,18 @@
 // Loosely timed (memory.tlm "lt", the default): each miss is one b_transport
 // call whose delay annotation says when the request leaves the L2 (ahead of
 // SystemC time by up to the scheduler's quantum) and, on return, when its line
-// arrives. Exact with the built-in target, which answers in call order.
+// arrives. The call is made when the scheduler reaches the cycle the request
+// leaves, not when the miss is found: misses are found up to an L1 and L2 round
+// ahead of that cycle and out of its order, and a target that books a shared
+// resource (the built-in DRAM channel) in call order would then serve a later
+// request first. So a target sees its requests in time order, each annotated
+// with its own cycle. The line is pending (kPendingCycle) until the arrival
+// cycle the call returned, as with the approximately timed protocol: the L2
+// asks the memory clock (hw/memory_clock.h) for each request's cycle and each
+// arrival's, and the accelerator's memory step at such a cycle applies the
+// arrivals due (apply_responses) and, after the L1s' work, sends the requests
+// due (release_lt), as the approximately timed path does before each cycle it
+// handles; both styles then give the same cycles.
 //
 // Approximately timed ("at"): each miss is queued and sent with nb_transport_fw
 // (BEGIN_REQ) when SystemC time reaches the cycle it leaves the L2, one request
@@ -25,6 +36,7 @@
 #include <functional>
 #include <map>
 #include <queue>
+#include <string>
 #include <unordered_map>
 #include <vector>
 
@@ -32,7 +44,9 @@
 #include <tlm>
 
 #include "hw/cache_level.h"
+#include "hw/line_waiters.h"
 #include "hw/cycle_clock.h"
+#include "hw/memory_clock.h"
 #include "hw/memory_config.h"
 #include "hw/stat_provider.h"
 #include "hw/timeline_recorder.h"
@@ -64,12 +78,20 @@ class L2Cache final : public sc_core::sc_module,
   const LruCache& tags() const { return level_.tags(); }
   uint32_t ways() const { return config_.ways; }
 
+  // ---- loosely timed, in time order ----
+  /// Asks `clock` for the cycles of its requests and arrivals (null: each
+  /// request is sent when its miss is found, in call order: a bare memory rig).
+  void set_memory_clock(MemoryClock* clock) { memory_clock_ = clock; }
+  /// Sends (b_transport) the queued requests due at or before `now` in time
+  /// order; their lines arrive (apply_responses) at the cycles the target gave.
+  void release_lt(uint64_t now);
+
   // ---- approximately timed: what the scheduler asks each cycle it handles ----
   /// Requests queued or in flight.
   bool busy() const { return outstanding_ != 0; }
   /// Sends the queued requests due at or before `now` (SystemC time is at `now`).
   void release_due(uint64_t now);
-  /// Resolves the responses that arrived for cycles at or before `now`.
+  /// Resolves the responses that arrived for cycles at or before `now` (either style).
   void apply_responses(uint64_t now);
   /// The cycle of the next queued send, else kPendingCycle.
   uint64_t next_send_cycle() const { return sends_.empty() ? kPendingCycle : sends_.top().cycle; }
@@ -86,6 +108,11 @@ class L2Cache final : public sc_core::sc_module,
   uint32_t lookahead_cycles() const { return lookahead_; }
   /// The scheduler last handled cycle `c` (responses before it are late).
   void handled_up_to(uint64_t c) { handled_ = c; }
+  /// The memory target's name, for errors (set once it is bound).
+  void set_target_name(std::string name) { target_name_ = std::move(name); }
+  /// Empty, or what the target did to break its lookahead promise (the first
+  /// response that came for a cycle already handled): the run's figures are then wrong.
+  const std::string& broken_promise() const { return broken_promise_; }
   /// A line state for a report of a stuck run: requests in flight and queued.
   std::string outstanding_report() const;
 
@@ -104,10 +131,12 @@ class L2Cache final : public sc_core::sc_module,
  private:
   /// The cycle line `line`, leaving the L2 at `send`, arrives (LT), or kPendingCycle (AT: queued).
   uint64_t dram_read(uint64_t line, uint64_t send);
-  uint64_t dram_read_lt(uint64_t line, uint64_t send);
+  /// One b_transport of line `line` leaving at `send`: the cycle it arrives.
+  uint64_t transport_lt(uint64_t line, uint64_t send);
   void wait_for(uint64_t line, uint32_t core, uint64_t t);
   void defer_miss(uint64_t line, uint32_t core, uint64_t t);
   void resolve(uint64_t line, uint64_t fill);
+
   void send_deferred();
   void arrived(tlm::tlm_generic_payload& trans, const sc_core::sc_time& delay);
   void prepare(tlm::tlm_generic_payload& trans, uint64_t line) const;
@@ -130,25 +159,24 @@ class L2Cache final : public sc_core::sc_module,
     uint64_t cycle, order, line;
     bool operator>(const Response& o) const { return cycle != o.cycle ? cycle > o.cycle : order > o.order; }
   };
-  struct Waiter {
-    uint32_t core;
-    uint64_t t;
-  };
   struct DeferredMiss {
     uint64_t line, t;
   };
   std::priority_queue<Send, std::vector<Send>, std::greater<Send>> sends_;
   std::priority_queue<Response, std::vector<Response>, std::greater<Response>> responses_;
   std::map<tlm::tlm_generic_payload*, uint64_t> in_flight_send_cycle_;  // sent, no response yet
-  std::unordered_map<uint64_t, std::vector<Waiter>> waiting_;           // by line
+  LineWaiters waiting_;                                                  // cores' L1s waiting for pending lines
   std::deque<DeferredMiss> deferred_;
   std::vector<tlm::tlm_generic_payload*> pool_;
   tlm::tlm_generic_payload* request_in_progress_ = nullptr;  // BEGIN_REQ sent, END_REQ not yet seen
   uint64_t outstanding_ = 0, order_ = 0, handled_ = 0;
   std::function<void()> on_response_;
   std::function<void(uint64_t)> on_request_;
+  MemoryClock* memory_clock_ = nullptr;
   TimelineRecorder* timeline_ = nullptr;
   uint32_t track_ = TimelineRecorder::kNoTrack;
+  std::string target_name_ = "the memory target";
+  std::string broken_promise_;
 };
 
 }  // namespace vbsim::hw

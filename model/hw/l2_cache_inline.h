@@ -13,6 +13,7 @@ __attribute__((always_inline)) inline uint64_t L2Cache::read_line_inline(uint64_
     return a.ready;
   }
   if (__builtin_expect(a.start == kPendingCycle, 0)) {  // every MSHR waits for a fill not known yet
+    level_.uncount_pending_wait(t);
     level_.install<Ways>(line, kPendingCycle, t);
     defer_miss(line, core, t);
     return kPendingCycle;

@@ -35,6 +35,11 @@ struct MemoryConfig {
   /// than this many cycles after its request, so the scheduler may handle
   /// events up to that far ahead of the oldest request in flight (1: lock-step).
   uint32_t at_lookahead_cycles = 1;
+  /// An L1 miss that waits for an MSHR is looked up in the shared L2 at the
+  /// cycle it leaves the L1 (true), so that the L2 takes every lookup in time
+  /// order, at a cost in simulation speed; false: when it is found, stamped
+  /// with that cycle (the L2's accesses_out_of_time_order counts them).
+  bool l2_lookups_in_time_order = false;
 };
 
 /// Throws std::invalid_argument naming the field ("memory.l1.ways: ...") when

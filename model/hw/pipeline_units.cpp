@@ -4,7 +4,7 @@ namespace vbsim::hw {
 
 PipelineUnit::PipelineUnit(sc_core::sc_module_name name, const UnitConfig& config)
     : sc_core::sc_module(name), target("target"), config_(config), latency_(config.latency),
-      pipes_(config, counters_) {
+      pipes_(config, counters_, sc_core::sc_module::name()) {
   target.bind(*this);
   declare_stat("ops", "operations", "operations issued", counters_.ops);
   declare_stat("pipeline_full_cycles", "cycles",

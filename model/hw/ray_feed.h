@@ -25,6 +25,7 @@ struct RayTimes {
   uint64_t started = 0;   ///< dispatched to a slot
   uint64_t finished = 0;  ///< its result reached the result sink
   uint32_t core = 0, slot = 0;  ///< slot: its index within the core
+  uint64_t entered = 0;   ///< read into the ray source's buffer (<= ready)
 };
 using RayTimesSink = std::function<void(const RayTimes&)>;
 

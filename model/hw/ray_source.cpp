@@ -23,10 +23,10 @@ uint32_t emission_ops(const SelfIntersectionMethod& m, const TraceRay& tr) {
 
 bool same_origin(const Vec3f& a, const Vec3f& b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
-/// The smallest power of two at least 2 x window: the ring's places are then a mask, not a division.
-uint32_t ring_capacity(uint32_t window) {
-  uint32_t c = 2;
-  while (c < 2 * uint64_t{window}) c *= 2;
+/// The smallest power of two above `n` (at least 2): places are then a mask, not a division.
+uint64_t power_of_two_above(uint64_t n) {
+  uint64_t c = 2;
+  while (c <= n) c *= 2;
   return c;
 }
 
@@ -35,9 +35,13 @@ uint32_t ring_capacity(uint32_t window) {
 RaySource::RaySource(sc_core::sc_module_name name, const HwConfig& config, FunctionalReplayer& replayer)
     : sc_core::sc_module(name), config_(config.source), latency_(config.shader.latency_cycles), replayer_(replayer),
       lanes_count_(std::max<uint32_t>(1, config.source.rays_per_cycle)),
-      window_(std::max<uint32_t>(1, config.source.window)), capacity_(ring_capacity(window_)), lanes_(lanes_count_),
-      position_of_(capacity_), ready_(window_) {
+      window_(config.source.window), capacity_(static_cast<uint32_t>(power_of_two_above(window_))),
+      parent_window_(static_cast<uint64_t>(std::max<int64_t>(1, replayer.options().parent_window))),
+      history_capacity_(power_of_two_above(parent_window_ + window_ + 1)),
+      independent_missing_(config.source.missing_parents == MissingParents::Independent), lanes_(lanes_count_),
+      ready_(window_ + 1) {
   ring_.reserve(std::min<uint32_t>(capacity_, 4096));
+  finish_.reserve(std::min<uint64_t>(history_capacity_, 1u << 16));
   const SourceCounters& c = counters_;
   const EmissionCounters& e = emission_;
   declare_stat("rays", "rays", "rays read from the trace and emitted", c.rays);
@@ -56,7 +60,8 @@ RaySource::RaySource(sc_core::sc_module_name name, const HwConfig& config, Funct
                "cycles from entering the buffer to ready, summed over the rays that waited for a parent",
                e.dependency_wait_cycles);
   declare_stat("parents_not_found", "rays",
-               "child rays whose parent is not in the trace or lies a window behind (taken as ready)",
+               "child rays whose parent is not among the parent window's rays before them, replayed as "
+               "independent (missing_parents \"independent\")",
                e.parents_not_found);
   declare_stat("lane_idle_dependency_cycles", "lane-cycles",
                "cycles a lane had nothing ready while buffered rays waited for their parents",
@@ -72,6 +77,8 @@ nlohmann::json RaySource::parameters() const {
   return {{"rays_per_cycle", lanes_count_},
           {"window", window_},
           {"dependencies", config_.dependencies},
+          {"parent_window", parent_window_},
+          {"missing_parents", missing_parents_name(config_.missing_parents)},
           {"shading_latency_cycles", latency_},
           {"issue_interval", config_.issue_interval},
           {"sign_bit_cycles", config_.sign_bit_cycles},
@@ -99,10 +106,10 @@ void RaySource::start(SourceHost& host, uint64_t at) {
 }
 
 bool RaySource::read_one(uint64_t now) {
-  if (ended_ || next_ >= base_ + window_) return false;
+  if (ended_ || next_ > base_ + window_) return false;
   if (ring_.size() < capacity_ && next_ == ring_.size()) ring_.emplace_back();  // grows to its capacity as rays come
+  if (finish_.size() < history_capacity_ && next_ == finish_.size()) finish_.emplace_back();
   Entry& e = at_pos(next_);
-  if (!ids_dense_ && next_ >= capacity_) position_of_.erase(e.id, next_ - capacity_);  // its previous ray left the history
   if (free_staged_.empty()) {
     free_staged_.push_back(static_cast<uint32_t>(staged_.size()));
     staged_.emplace_back();
@@ -131,69 +138,126 @@ void RaySource::enter(uint64_t pos, uint64_t now) {
   ray.index = e.index = pos;
   e.id = tr.id;
   ray.er = replayer_.emit(tr);  // in trace order: a parent before its children
-  e.entered = now;
+  e.entered = ray.entered = now;
   e.first_child = e.next_sibling = kNone;
   e.state = State::Ready;
   ++counters_.rays;
-  const uint64_t history = base_ > window_ ? base_ - window_ : 0;  // the oldest position still known
-  bool waits = false;
+  note_position(tr.id, pos);  // the ray leaving the history goes first
+  finish_at(pos) = Finish{};
   if (config_.dependencies) {
-    const auto child = unresolved_.empty() ? unresolved_.end() : unresolved_.find(tr.id);
-    if (child != unresolved_.end() && child->second >= history) {
-      const std::string what = fmt::format(
-          "ray {} is the parent of ray {} (trace position {}), which comes before it: a trace replayed with "
-          "dependencies lists every parent before its children (--deps off replays it as independent rays)",
-          tr.id, at_pos(child->second).id, child->second);
-      throw std::runtime_error(locate_ ? locate_("id", what) : fmt::format("trace position {}: {}", pos, what));
+    if (!unresolved_.empty()) {
+      const auto child = unresolved_.find(tr.id);
+      if (child != unresolved_.end() && child->second.pos + parent_window_ >= pos)
+        fail(pos, "id",
+             fmt::format("ray {} is the parent of ray {} (trace position {}), which comes before it: a trace "
+                         "replayed with dependencies lists every parent before its children (--deps off replays "
+                         "it as independent rays)",
+                         tr.id, child->second.id, child->second.pos));
     }
     if (tr.parent >= 0) {
       uint64_t parent_pos = 0;
-      if (!find_position(tr.parent, parent_pos) || parent_pos < history) {
-        ++emission_.parents_not_found;
-        if (unresolved_.size() > 4 * size_t{window_})  // forget the children too far behind to matter
-          for (auto u = unresolved_.begin(); u != unresolved_.end();)
-            u = u->second < history ? unresolved_.erase(u) : std::next(u);
-        unresolved_.emplace(tr.parent, pos);
-      } else {
+      const ParentAt where = find_parent(tr.parent, pos, parent_pos);
+      if (where != ParentAt::Found) {
+        parent_not_found(tr, pos, where);
+      } else if (finish_at(parent_pos).cycle == kUnfinished) {
+        // In the buffer (every position before base_ has finished): ready with
+        // the parent's other children once its result has been shaded.
         Entry& parent = at_pos(parent_pos);
-        if (parent.state != State::Finished || parent.finish + latency_ > now) {
-          // Ready with the parent's other children, when its result has been shaded.
-          waits = true;
-          e.state = State::Waiting;
-          ++waiting_count_;
-          e.next_sibling = parent.first_child;
-          parent.first_child = place_of(pos);
-          ++emission_.children_waited;
-          if (parent.state == State::Finished && !parent.event_pending) {
-            parent.event_pending = true;
-            host_->schedule_source_event(lanes_count_ + place_of(parent_pos), parent.finish + latency_);
-          }
-        }
+        e.state = State::Waiting;
+        e.parent = parent_pos;
+        ++waiting_count_;
+        ++emission_.children_waited;
+        e.next_sibling = parent.first_child;
+        parent.first_child = place_of(pos);
+        return;
+      } else if (finish_at(parent_pos).cycle + latency_ > now) {
+        ++emission_.children_waited;
+        return wait_for_shader(pos, parent_pos, finish_at(parent_pos).cycle + latency_);
       }
     }
   }
-  note_position(tr.id, pos);
-  if (!waits) make_ready(pos, now);
+  make_ready(pos, now);
 }
 
-bool RaySource::find_position(int64_t id, uint64_t& pos) const {
-  if (!ids_dense_) return position_of_.find(id, pos);
-  const uint64_t p = static_cast<uint64_t>(id) - static_cast<uint64_t>(first_id_);  // an id below the first wraps high
-  // Known: [next - capacity + 1, next), as in the table (next's ring place is the entering ray's).
-  if (p >= next_ || p + capacity_ <= next_) return false;
-  pos = p;
-  return true;
+void RaySource::wait_for_shader(uint64_t pos, uint64_t parent_pos, uint64_t cycle) {
+  Entry& e = at_pos(pos);
+  e.state = State::Waiting;
+  e.parent = parent_pos;
+  ++waiting_count_;
+  Finish& parent = finish_at(parent_pos);
+  if (parent.group != kNone) {  // joins the children its parent's event makes ready
+    Entry& head = ring_[parent.group];
+    e.next_sibling = head.next_sibling;
+    head.next_sibling = place_of(pos);
+    return;
+  }
+  e.next_sibling = kNone;
+  parent.group = place_of(pos);  // the group's event at its first child's place: it stays while the child waits
+  host_->schedule_source_event(lanes_count_ + parent.group, cycle);
+}
+
+void RaySource::fail(uint64_t pos, const std::string& field, const std::string& what) const {
+  throw std::runtime_error(locate_ ? locate_(field, what) : fmt::format("trace position {}: {}", pos, what));
+}
+
+void RaySource::parent_not_found(const TraceRay& tr, uint64_t pos, ParentAt where) {
+  const std::string what =
+      where == ParentAt::TooFar
+          ? fmt::format("parent {} lies more than {} rays before ray {} (the parent window: --parent-window)",
+                        tr.parent, parent_window_, tr.id)
+          : fmt::format("parent {} of ray {} is not among the {} rays before it (not in the trace, later in it, or "
+                        "further back than --parent-window)",
+                        tr.parent, tr.id, parent_window_);
+  if (!independent_missing_)
+    fail(pos, "parent",
+         what + ": a child cannot wait for it; --missing-parents independent replays such rays as independent, "
+                "--deps off every ray");
+  if (emission_.parents_not_found++ == 0)
+    first_not_found_ = locate_ ? locate_("parent", what) : fmt::format("trace position {}: {}", pos, what);
+  if (unresolved_.size() > 4 * size_t{window_} + 64)  // forget the children too far behind to matter
+    for (auto u = unresolved_.begin(); u != unresolved_.end();)
+      u = u->second.pos + parent_window_ < pos ? unresolved_.erase(u) : std::next(u);
+  unresolved_.emplace(tr.parent, Unresolved{pos, tr.id});
+}
+
+RaySource::ParentAt RaySource::find_parent(int64_t id, uint64_t pos, uint64_t& found) const {
+  uint64_t p = 0;
+  if (ids_dense_) {
+    p = static_cast<uint64_t>(id) - static_cast<uint64_t>(first_id_);  // an id below the first wraps high
+    if (p >= pos) return ParentAt::NotBefore;
+  } else if (!position_of_->find(id, p) || p >= pos) {
+    return ParentAt::NotBefore;  // (or dropped from the table: further back)
+  }
+  if (pos - p > parent_window_) return ParentAt::TooFar;
+  found = p;
+  return ParentAt::Found;
 }
 
 void RaySource::note_position(int64_t id, uint64_t pos) {
   if (ids_dense_) {
     if (pos == 0) first_id_ = id;
     if (static_cast<uint64_t>(id) - static_cast<uint64_t>(first_id_) == pos) return;
-    // The first id off the sequence: the table takes over the rays still known.
+    // The first id off the sequence: the table takes over the rays the history holds.
     ids_dense_ = false;
-    for (uint64_t p = pos >= capacity_ ? pos - capacity_ + 1 : 0; p < pos; ++p) position_of_.set(at_pos(p).id, p);
+    position_of_ = std::make_unique<IdPositionMap>(static_cast<uint32_t>(
+        std::min<uint64_t>(parent_window_ + 1, uint64_t{1} << 31)));
+    history_ids_.assign(history_capacity_, 0);
+    for (uint64_t p = pos > parent_window_ ? pos - parent_window_ : 0; p < pos; ++p) {
+      const int64_t pid = first_id_ + static_cast<int64_t>(p);
+      position_of_->set(pid, p);
+      history_ids_[p & (history_capacity_ - 1)] = pid;
+    }
   }
-  position_of_.set(id, pos);
+  if (pos > parent_window_) {  // the ray parent_window_ + 1 back leaves the history
+    const uint64_t old = pos - parent_window_ - 1;
+    position_of_->erase(history_ids_[old & (history_capacity_ - 1)], old);
+  }
+  uint64_t seen = 0;
+  if (position_of_->find(id, seen))
+    fail(pos, "id",
+         fmt::format("duplicate id {}: the ray at trace position {} has it too (a ray id names one ray)", id, seen));
+  position_of_->set(id, pos);
+  history_ids_[pos & (history_capacity_ - 1)] = id;
 }
 
 void RaySource::make_ready(uint64_t pos, uint64_t cycle) {
@@ -218,25 +282,28 @@ void RaySource::on_event(uint32_t id, uint64_t at) {
     }
     return;
   }
-  // The children of the ray at this place are ready: its result has been shaded.
-  Entry& parent = ring_[id - lanes_count_];
-  parent.event_pending = false;
-  for (uint32_t c = parent.first_child; c != kNone;) {
+  // The children of one parent, from the first child at this place, are
+  // ready: its result has been shaded.
+  const uint32_t head = id - lanes_count_;
+  Finish& parent = finish_at(ring_[head].parent);
+  if (parent.group == head) parent.group = kNone;
+  for (uint32_t c = head; c != kNone;) {
     Entry& child = ring_[c];
     c = child.next_sibling;
     make_ready(child.index, at);
   }
-  parent.first_child = kNone;
   start_idle_lanes(at);
 }
 
 void RaySource::on_finish(uint64_t index, uint64_t at) {
   Entry& e = at_pos(index);
   e.state = State::Finished;
-  e.finish = at;
-  if (e.first_child != kNone && !e.event_pending) {
-    e.event_pending = true;
-    host_->schedule_source_event(lanes_count_ + place_of(index), at + latency_);
+  Finish& f = finish_at(index);
+  f.cycle = at;
+  if (e.first_child != kNone) {  // its waiting children: one group, its event at the first child's place
+    f.group = e.first_child;
+    host_->schedule_source_event(lanes_count_ + f.group, at + latency_);
+    e.first_child = kNone;
   }
   const uint64_t old_base = base_;
   while (base_ < next_ && at_pos(base_).state == State::Finished) ++base_;

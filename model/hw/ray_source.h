@@ -2,19 +2,29 @@
 // dispatcher, with its ray-emission buffer.
 //
 // Buffer. The source reads trace rays in order into a buffer that looks ahead
-// at most `source.window` rays beyond the oldest unfinished one (and only as
-// far as it must: until it has a ray ready to emit), and runs each
+// at most `source.window` rays beyond the oldest unfinished one (so it holds at
+// most window + 1 rays, those in flight included; window 0: one ray at a time),
+// and only as far as it must: until it has a ray ready to emit. Each ray goes
 // through the datapath's emission step as it enters (FunctionalReplayer::emit:
 // the origin, emission-time methods, the parent sign bit when the trace lacks
 // it; in trace order, so parents are emitted before their children).
 //
-// Dependencies (`source.dependencies`, default on). A ray whose `parent` is in
-// the trace is ready `shader.latency_cycles` after its parent's result reached
-// the result sink (the shader that emits it has seen the hit); a ray without a
-// parent, or whose parent the source cannot find (not in the trace, or more
-// than a window behind the oldest unfinished ray), is ready when it enters the
-// buffer. A parent that turns up after its child is an error naming the
-// parent's line. Off: every ray ready at once, as a trace of unrelated queries.
+// Dependencies (`source.dependencies`, default on). A ray whose `parent` is one
+// of the `parent_window` rays before it in the trace (ReplayOptions::
+// parent_window, the same window the functional replay finds parent rays in)
+// is ready `shader.latency_cycles` after that parent's result reached the
+// result sink (the shader that emits it has seen the hit), whatever the trace
+// order and the emission window: the source keeps the finish cycle of each of
+// those rays (8 bytes a ray, and an id table of 16 bytes a slot at a load of at
+// most 1/2 once ids stop running in trace order), so a parent far behind the
+// buffer is still waited for. A ray without a parent is ready when it enters.
+// A child whose parent is not among those rays (absent from the trace, later
+// in it, or further back) is an error naming the child's line; with
+// `source.missing_parents` "independent" it is ready on entry instead, counted
+// (`parents_not_found`, the first one's line kept for a warning), and a parent
+// that turns up after its child is then an error naming the parent's line. A
+// ray id that repeats one of those rays' ids is an error. Off: every ray ready
+// at once, as a trace of unrelated queries.
 //
 // Emission. `source.rays_per_cycle` lanes each take the ready ray earliest in
 // trace order (a waiting child does not hold back the ready rays behind it) and
@@ -31,6 +41,7 @@
 #include <cstdint>
 #include <deque>
 #include <functional>
+#include <memory>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -54,6 +65,7 @@ struct SourceRay {
   uint64_t index = 0;   ///< position in the trace (0 for the first ray)
   uint64_t ready = 0;   ///< cycle it became ready for emission
   uint64_t emitted = 0; ///< cycle its emission started
+  uint64_t entered = 0; ///< cycle it entered the buffer
 };
 
 /// What the source needs from the scheduler.
@@ -70,7 +82,7 @@ class SourceHost {
 struct EmissionCounters {
   uint64_t children_waited = 0;          ///< rays that entered the buffer before their parent's result
   uint64_t dependency_wait_cycles = 0;   ///< summed over rays: cycles from entering the buffer to ready
-  uint64_t parents_not_found = 0;        ///< child rays whose parent the source could not find
+  uint64_t parents_not_found = 0;        ///< child rays whose parent the source could not find (replayed as independent)
   uint64_t lane_idle_dependency_cycles = 0;  ///< lane-cycles idle while buffered rays waited for parents
   uint64_t lane_idle_window_cycles = 0;  ///< lane-cycles idle with the buffer's window full of unfinished rays
   uint64_t bundles = 0, bundled_rays = 0;  ///< bundle calls and the rays they emitted
@@ -98,6 +110,9 @@ class RaySource final : public sc_core::sc_module, public StatProvider {
   bool all_done() const { return ended_ && base_ == next_; }
   uint64_t rays_read() const { return next_; }
   bool holding() const { return !held_.empty(); }
+  /// Where the first child whose parent was not found is (missing_parents
+  /// "independent"; empty when none was): its line and what was missing.
+  const std::string& first_parent_not_found() const { return first_not_found_; }
   /// Rays in the buffer not yet emitted, for a report of a stuck run.
   std::string buffer_report() const;
 
@@ -109,18 +124,24 @@ class RaySource final : public sc_core::sc_module, public StatProvider {
  private:
   enum class State : uint8_t { Waiting, Ready, Emitting, Held, InFlight, Finished };
   static constexpr uint32_t kNone = ~uint32_t{0};
-  /// A ray the source knows: in the buffer, in flight, or finished and kept
-  /// as a possible parent. Small, so that the ring stays in the host's caches;
-  /// the ray record itself is staged (below) only until it is dispatched.
+  static constexpr uint64_t kUnfinished = ~uint64_t{0};
+  /// A ray in the buffer: from the oldest unfinished one to the last read.
+  /// Small, so that the ring stays in the host's caches; the ray record itself
+  /// is staged (below) only until it is dispatched.
   struct Entry {
     int64_t id = 0;
     uint64_t index = 0;  ///< its trace position
-    uint64_t entered = 0, finish = 0;
-    uint32_t first_child = kNone, next_sibling = kNone;  ///< ring places of children waiting for this ray
+    uint64_t entered = 0;
+    uint64_t parent = 0;  ///< waiting: its parent's trace position
+    /// Ring places: the first child waiting for this unfinished ray; the next
+    /// child of the same parent (waiting for it, or in one group made ready
+    /// together by the event at the group's first place).
+    uint32_t first_child = kNone, next_sibling = kNone;
     uint32_t staged = kNone;  ///< its record in staged_ until dispatched
     State state = State::Finished;
-    bool event_pending = false;  ///< the event making its children ready is scheduled
   };
+  /// Where a child's parent is, as far as the source knows.
+  enum class ParentAt : uint8_t { Found, NotBefore, TooFar };
   enum class Idle : uint8_t { None, Dependency, Window, End };
   struct Lane {
     bool emitting = false;
@@ -141,10 +162,26 @@ class RaySource final : public sc_core::sc_module, public StatProvider {
   void fill_until_ready(uint64_t now);
   void enter(uint64_t pos, uint64_t now);
   void make_ready(uint64_t pos, uint64_t cycle);
-  /// The trace position of the ray `id` among the capacity_ - 1 rays read before the one entering, or false.
-  bool find_position(int64_t id, uint64_t& pos) const;
-  /// Records that the ray `id` is at `pos` (the next position read).
+  /// The trace position of the ray `id` among the parent_window_ rays before
+  /// `pos` (the one entering), into `found`.
+  ParentAt find_parent(int64_t id, uint64_t pos, uint64_t& found) const;
+  /// Records that the ray `id` is at `pos` (the next position read); throws
+  /// when `id` repeats an id of the rays the history holds.
   void note_position(int64_t id, uint64_t pos);
+  /// A child at `pos` whose parent is not where it must be: an error naming
+  /// its line, or (missing_parents "independent") counted.
+  void parent_not_found(const TraceRay& tr, uint64_t pos, ParentAt where);
+  /// The ray at `pos` waits for its finished parent at `parent_pos`, whose
+  /// children are ready at `cycle` (its result plus the shading latency).
+  void wait_for_shader(uint64_t pos, uint64_t parent_pos, uint64_t cycle);
+  /// A position's finish cycle (kUnfinished until then) and, while its children
+  /// wait for the shader, the ring place of their group's first child.
+  struct Finish {
+    uint64_t cycle = kUnfinished;
+    uint32_t group = kNone;
+  };
+  Finish& finish_at(uint64_t pos) { return finish_[pos & (history_capacity_ - 1)]; }
+  [[noreturn]] void fail(uint64_t pos, const std::string& field, const std::string& what) const;
   void try_start(uint32_t lane, uint64_t now);
   void go_idle(uint32_t lane, uint64_t now);
   /// Adds the lane's idle time since it went idle (or was last counted) to its reason's counter.
@@ -161,8 +198,16 @@ class RaySource final : public sc_core::sc_module, public StatProvider {
   RayFeed feed_;
   RayLocator locate_;
   SourceHost* host_ = nullptr;
-  uint32_t lanes_count_, window_, capacity_;  // capacity: a power of two, at least the window plus as many finished rays behind it
+  uint32_t lanes_count_, window_, capacity_;  // capacity: a power of two above the window
   std::vector<Entry> ring_;  // position p at place_of(p); grown as positions arrive, up to capacity_
+  /// The history: the Finish of each of the last history_capacity_ positions
+  /// read, a power of two above parent_window_ + window_ + 1 (a waiting
+  /// child's parent is kept while the child is in the buffer); grown as
+  /// positions arrive.
+  uint64_t parent_window_, history_capacity_;
+  std::vector<Finish> finish_;
+  bool independent_missing_ = false;  ///< missing_parents "independent"
+  std::string first_not_found_;
   std::vector<SourceRay> staged_;     // records of rays read and not yet dispatched
   std::vector<uint32_t> free_staged_;  // places of staged_ free for reuse (the last freed first: warm)
   std::vector<Lane> lanes_;
@@ -172,11 +217,16 @@ class RaySource final : public sc_core::sc_module, public StatProvider {
   uint64_t waiting_count_ = 0;  ///< buffered rays waiting for a parent
   /// Ids in trace order as first_id_, first_id_ + 1, ... (the usual trace): a ray's
   /// position is its id less first_id_. From the first id off that sequence on,
-  /// position_of_ maps id -> position for [next - capacity, next).
+  /// position_of_ (made then) maps id -> position for the last parent_window_ + 1 positions.
   bool ids_dense_ = true;
   int64_t first_id_ = 0;
-  IdPositionMap position_of_;
-  std::unordered_map<int64_t, uint64_t> unresolved_;   ///< parent id not found -> its child's position
+  std::unique_ptr<IdPositionMap> position_of_;
+  std::vector<int64_t> history_ids_;  ///< with position_of_: the id at each history place
+  struct Unresolved {
+    uint64_t pos;  ///< the child's trace position
+    int64_t id;    ///< and id
+  };
+  std::unordered_map<int64_t, Unresolved> unresolved_;  ///< parent id not found (missing_parents "independent") -> its child
   ReadyQueue ready_;  ///< ready positions, smallest first
   std::deque<uint32_t> held_;  ///< lanes holding an emitted ray for want of a slot, oldest first
   SourceCounters counters_;

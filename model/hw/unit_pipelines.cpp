@@ -1,5 +1,9 @@
 #include "hw/unit_pipelines.h"
 
+#include <utility>
+
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <stdexcept>
 
@@ -9,14 +13,14 @@ namespace {
 constexpr size_t kInitialWords = 16;  // 1024 cycles from the current event's block; grows on demand
 }  // namespace
 
-UnitPipelines::UnitPipelines(const UnitConfig& c, UnitCounters& totals)
+UnitPipelines::UnitPipelines(const UnitConfig& c, UnitCounters& totals, std::string owner)
     : count_(c.count < 1 ? 1 : c.count),
       latency_(c.latency),
       interval_(c.issue_interval < 1 ? 1 : c.issue_interval),
       words_per_pipe_(kInitialWords),
       word_mask_(kInitialWords - 1),
       ring_(count_ * kInitialWords),
-      totals_(&totals) {}
+      totals_(&totals), owner_(std::move(owner)) {}
 
 uint64_t UnitPipelines::issue_general(uint64_t ready) {
   uint64_t best = ~uint64_t{0};
@@ -46,7 +50,10 @@ void UnitPipelines::move_to(uint64_t block) {
 }
 
 void UnitPipelines::grow(uint64_t block) {
-  if (block < now_block_) throw std::logic_error("UnitPipelines: an operation ready before the current event");
+  if (block < now_block_)
+    throw std::logic_error(fmt::format("{}: an operation ready at cycle {} or earlier, before the current event's "
+                                       "cycle {} or later (a unit's operands cannot be ready in the past)",
+                                       owner_, block * kWordBits + kWordBits - 1, now_block_ * kWordBits));
   size_t words = words_per_pipe_;
   while (block - now_block_ >= words) words *= 2;
   std::vector<uint64_t> ring(count_ * words, 0);

@@ -25,6 +25,7 @@
 // engine sums every core's pipelines of one kind into one).
 #pragma once
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "hw/hw_config.h"
@@ -35,8 +36,8 @@ namespace vbsim::hw {
 class UnitPipelines {
  public:
   /// `totals` must outlive the pipelines. count >= 1, issue_interval >= 1 (the
-  /// configuration is validated).
-  UnitPipelines(const UnitConfig& c, UnitCounters& totals);
+  /// configuration is validated). `owner` names the unit in errors.
+  UnitPipelines(const UnitConfig& c, UnitCounters& totals, std::string owner = "UnitPipelines");
 
   /// Issue cycle of an operation whose operands are ready at `ready`, requested
   /// while handling the event at cycle `now`: `now` never decreases from one
@@ -86,6 +87,7 @@ class UnitPipelines {
   uint64_t now_block_ = 0;  // the current event's block of 64 cycles
   std::vector<uint64_t> ring_;  // count_ rings of words_per_pipe_ words
   UnitCounters* totals_;
+  std::string owner_;
 };
 
 }  // namespace vbsim::hw

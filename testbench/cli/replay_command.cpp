@@ -58,7 +58,7 @@ struct ReplayArgs {
   std::string hits;
   std::string mode = "functional";
   std::string preset;  // cycle mode: hardware preset (default: the config's, else small)
-  std::string vcd, timeline, trace_scope, deps, ray_log;
+  std::string vcd, timeline, trace_scope, deps, missing_parents, ray_log;
   uint64_t timeline_start = 0, timeline_cycles = 2000, vcd_start = 0, vcd_cycles = 2000;
   bool timeline_window_given = false;  // --timeline-start or --timeline-cycles on the command line
   bool vcd_window_given = false;       // --vcd-start or --vcd-cycles on the command line
@@ -68,9 +68,10 @@ struct ReplayArgs {
 
 /// One line of the ray log.
 std::string ray_log_line(const hw::RayTimes& t) {
-  return fmt::format(R"({{"id":{},"parent":{},"ready":{},"emit":{},"start":{},"finish":{},"core":{},"slot":{}}})"
-                     "\n",
-                     t.id, t.parent, t.ready, t.emitted, t.started, t.finished, t.core, t.slot);
+  return fmt::format(
+      R"({{"id":{},"parent":{},"enter":{},"ready":{},"emit":{},"start":{},"finish":{},"core":{},"slot":{}}})"
+      "\n",
+      t.id, t.parent, t.entered, t.ready, t.emitted, t.started, t.finished, t.core, t.slot);
 }
 
 ReplayStats run_cycle_mode(const ReplayArgs& a, const ReplayOptions& opt, TraceSource& source, const SceneAndBvh& sb,
@@ -82,6 +83,9 @@ ReplayStats run_cycle_mode(const ReplayArgs& a, const ReplayOptions& opt, TraceS
                uint64_t{cfg.cores} * cfg.slots_per_core, cfg.cores, cfg.slots_per_core,
                hw::slot_host_bytes(cfg) >> 20);
   if (!a.deps.empty()) cfg.source.dependencies = a.deps == "on";
+  if (!a.missing_parents.empty())
+    cfg.source.missing_parents =
+        a.missing_parents == "independent" ? hw::MissingParents::Independent : hw::MissingParents::Error;
   config["hw"] = hw::hw_config_json(cfg);
   source.set_triangle_count(sb.scene.size());
   hw::CycleRunOptions run;
@@ -116,6 +120,12 @@ ReplayStats run_cycle_mode(const ReplayArgs& a, const ReplayOptions& opt, TraceS
     log->flush();
     log_file->commit();
   }
+  if (const uint64_t n = r.hw["emission"]["parents_not_found"].get<uint64_t>(); n != 0 && !a.quiet)
+    fmt::print(stderr,
+               "vbsim: warning: {} child ray{} replayed as independent rays: {} parent not found among the rays "
+               "before {} (the first: {})\n",
+               n, n == 1 ? "" : "s", n == 1 ? "its" : "their", n == 1 ? "it" : "them",
+               r.hw["emission"]["first_parent_not_found"].get<std::string>());
   hw = std::move(r.hw);
   table = std::move(r.table);
   return r.stats;
@@ -125,10 +135,11 @@ void check_mode_options(const ReplayArgs& a) {
   if (a.mode != "functional" && a.mode != "cycle")
     throw UsageError(fmt::format("option '--mode': '{}' is not available; modes: functional, cycle", a.mode));
   if (a.mode != "cycle" && (!a.preset.empty() || !a.vcd.empty() || !a.timeline.empty() || a.timeline_window_given ||
-                            a.vcd_window_given || !a.deps.empty() || !a.ray_log.empty() || !a.trace_scope.empty()))
+                            a.vcd_window_given || !a.deps.empty() || !a.missing_parents.empty() || !a.ray_log.empty() ||
+                            !a.trace_scope.empty()))
     throw UsageError(
         "options '--preset', '--vcd', '--vcd-start', '--vcd-cycles', '--timeline', '--timeline-start', "
-        "'--timeline-cycles', '--trace-scope', '--deps' and '--ray-log' need '--mode cycle'");
+        "'--timeline-cycles', '--trace-scope', '--deps', '--missing-parents' and '--ray-log' need '--mode cycle'");
   if (a.timeline_window_given && a.timeline.empty())
     throw UsageError("options '--timeline-start' and '--timeline-cycles' need '--timeline FILE'");
   if (a.vcd_window_given && a.vcd.empty())
@@ -243,9 +254,14 @@ void add_replay_command(CLI::App& app) {
                   "cycle mode: on (a child ray waits for its parent's result plus the shading latency) or off (every "
                   "ray independent, as a trace of unrelated queries) [the config's hw.source.dependencies, else on]")
       ->check(CLI::IsMember({"on", "off"}));
+  cmd->add_option("--missing-parents", args->missing_parents,
+                  "cycle mode, dependencies on: a child whose parent is not among the --parent-window rays before it "
+                  "is an error naming its line (error), or replayed as an independent ray, counted and warned about "
+                  "(independent) [the config's hw.source.missing_parents, else error]")
+      ->check(CLI::IsMember({"error", "independent"}));
   cmd->add_option("--ray-log", args->ray_log,
-                  "cycle mode: write one JSON line per ray here, in trace order: id, parent, ready, emit, start and "
-                  "finish cycles, core, slot");
+                  "cycle mode: write one JSON line per ray here, in trace order: id, parent, enter (the source's "
+                  "buffer), ready, emit, start and finish cycles, core, slot");
   cmd->add_option("--stats", args->stats, "write the statistics JSON here");
   cmd->add_option("--hits", args->hits, "write one JSON line per ray here (after a provenance line)");
   cmd->add_flag("--quiet,-q", args->quiet, "print nothing on success (no progress, no SystemC info messages)");

@@ -78,10 +78,15 @@ TEST_CASE("a parent and its two children on one slot: the children wait for the 
   CHECK(free.result.counters.cycles == 106);
 }
 
-TEST_CASE("a child whose parent comes later in the trace is an error naming the parent", "[module][deps]") {
+TEST_CASE("a child whose parent comes later in the trace is an error naming the child, or with independent "
+          "missing parents the parent", "[module][deps]") {
   const ThreeFloors f;
   HwConfig cfg = one_slot(3, 5, 11, 7);
   using Catch::Matchers::Contains;
+  CHECK_THROWS_WITH(run_logged({child_of(2, 7), down_from(7, 1.0f)}, f.scene, f.bvh, cfg),
+                    Contains("trace position 0") && Contains("parent 7 of ray 2 is not among the 131072 rays before") &&
+                        Contains("--missing-parents independent"));
+  cfg.source.missing_parents = MissingParents::Independent;
   CHECK_THROWS_WITH(run_logged({child_of(2, 7), down_from(7, 1.0f)}, f.scene, f.bvh, cfg),
                     Contains("trace position 1") && Contains("ray 7 is the parent of ray 2 (trace position 0)") &&
                         Contains("--deps off"));
@@ -89,11 +94,18 @@ TEST_CASE("a child whose parent comes later in the trace is an error naming the 
   CHECK(run_logged({child_of(2, 7), down_from(7, 1.0f)}, f.scene, f.bvh, cfg).times.size() == 2);
 }
 
-TEST_CASE("a child whose parent is not in the trace is ready at once and counted", "[module][deps]") {
+TEST_CASE("a child whose parent is not in the trace is an error, or ready at once and counted", "[module][deps]") {
   const ThreeFloors f;
-  const Logged run = run_logged({child_of(2, 99)}, f.scene, f.bvh, one_slot(3, 5, 11, 7));
-  CHECK(run.times.at(2).ready == 0);
+  HwConfig cfg = one_slot(3, 5, 11, 7);
+  CHECK_THROWS_WITH(run_logged({down_from(1, 1.0f), child_of(2, 99)}, f.scene, f.bvh, cfg),
+                    Catch::Matchers::Contains("trace position 1: parent 99 of ray 2"));
+  cfg.source.missing_parents = MissingParents::Independent;
+  const Logged run = run_logged({down_from(1, 1.0f), child_of(2, 99)}, f.scene, f.bvh, cfg);
+  CHECK(run.times.at(2).ready == 1);  // read into the buffer when ray 1 had left the lane
   CHECK(run.result.hw["instances"]["accelerator.ray_source"]["parents_not_found"] == 1);
+  CHECK(run.result.hw["emission"]["parents_not_found"] == 1);
+  CHECK_THAT(run.result.hw["emission"]["first_parent_not_found"].get<std::string>(),
+             Catch::Matchers::Contains("trace position 1: parent 99 of ray 2"));
 }
 
 TEST_CASE("ray ids off the trace's sequence find their parents as sequential ids do", "[module][deps]") {

@@ -63,7 +63,9 @@ void strip_unpinned(nlohmann::json& j) {
       nlohmann::json& hw = j["config"]["hw"];
       hw["memory"].erase("tlm");
       hw["memory"].erase("at_lookahead_cycles");
-      for (const char* f : {"rays_per_cycle", "window", "dependencies", "bundles", "bundle_cycles", "bundle_max"})
+      hw["memory"].erase("l2_lookups_in_time_order");
+      for (const char* f : {"rays_per_cycle", "window", "dependencies", "missing_parents", "bundles", "bundle_cycles",
+                            "bundle_max"})
         hw["source"].erase(f);
       hw.erase("shader");
     }

@@ -86,20 +86,28 @@ TEST_CASE("the ray log of every committed trace: every ray once, children after 
   fs::remove_all(dir);
 }
 
-TEST_CASE("a trace with a child before its parent is refused, naming the parent's line", "[system][cycle][deps]") {
+TEST_CASE("a trace with a child before its parent is refused, naming the child's line or the parent's", "[system][cycle][deps]") {
   const auto dir = scratch_dir("child_first");
   const std::string scene = source_dir() + "/traces/bunny/bunny.obj";
   write_file(dir / "t.jsonl", R"({"format": "vbsim-trace", "version": 1, "scene": ")" + scene + R"("}
 {"id": 1, "parent": 0, "kind": "reflect", "o": [0, 0, 1], "d": [0, 0, -1], "parent_prim": 3}
 {"id": 0, "o": [0, 0, 2], "d": [0, 0, -1]}
 )");
-  // The trace reader's consistency check refuses it in every mode (the intended
-  // origin of the child needs its parent); the cycle model's own check (the ray
-  // source, module/dependency_test.cpp) guards rays fed without that reader.
-  for (const char* deps : {"on", "off"}) {
-    const auto bad = run_vbsim("replay " + (dir / "t.jsonl").string() + " --mode cycle -q --deps " + deps);
-    CHECK(bad.exit_code == 1);
-    CHECK_THAT(bad.output, Catch::Contains("t.jsonl:3") && Catch::Contains("ray 0 is the parent of ray 1"));
+  // With dependencies the ray source refuses the child first, naming its line
+  // (it cannot wait for a parent it has not seen); without, the trace reader's
+  // consistency check refuses the parent when it comes (the intended origin of
+  // the child needs it). The cycle model's own checks (the ray source,
+  // module/dependency_test.cpp) guard rays fed without that reader.
+  const auto on = run_vbsim("replay " + (dir / "t.jsonl").string() + " --mode cycle -q --deps on");
+  CHECK(on.exit_code == 1);
+  CHECK_THAT(on.output, Catch::Contains("t.jsonl:2") && Catch::Contains("field 'parent'") &&
+                            Catch::Contains("parent 0 of ray 1 is not among"));
+  for (const char* missing : {"error", "independent"}) {
+    INFO(missing);
+    const auto off = run_vbsim("replay " + (dir / "t.jsonl").string() + " --mode cycle -q --deps " +
+                               (std::string(missing) == "error" ? "off" : "on --missing-parents independent"));
+    CHECK(off.exit_code == 1);
+    CHECK_THAT(off.output, Catch::Contains("t.jsonl:3") && Catch::Contains("ray 0 is the parent of ray 1"));
   }
   fs::remove_all(dir);
 }
