@@ -68,12 +68,7 @@ __attribute__((always_inline)) inline uint64_t L1Cache::read_line(uint64_t line,
   // Waits for an MSHR (start > now): with l2_lookups_in_time_order looked up in
   // the L2 when it leaves; else now, stamped with that cycle (its wait is in
   // mshr_stall_cycles). The clock first: one predictable test on the usual path.
-  if (__builtin_expect(clock_ != nullptr, 0) && a.start != now) {
-    level_.install<L1Ways>(line, kPendingCycle, now);
-    level_.hold_mshr(kPendingCycle);
-    defer_until(line, slot, now, a.start);
-    return kPendingCycle;
-  }
+  if (__builtin_expect(clock_ != nullptr, 0) && a.start != now) return defer_until(line, slot, now, a.start);
   const uint64_t fill = next_level<L2Ways>(line, a.start + level_.hit_latency());
   level_.fill<L1Ways>(line, fill, a.start);
   if (__builtin_expect(vcd_ != nullptr, 0)) trace_miss(a.start, fill);
@@ -120,11 +115,14 @@ void L1Cache::defer_miss(uint64_t line, uint32_t slot, uint64_t t) {
   wait_for(line, slot, t);
 }
 
-void L1Cache::defer_until(uint64_t line, uint32_t slot, uint64_t t, uint64_t start) {
+uint64_t L1Cache::defer_until(uint64_t line, uint32_t slot, uint64_t t, uint64_t start) {
+  level_.install<0>(line, kPendingCycle, t);
+  level_.hold_mshr(kPendingCycle);
   timed_.push_back({start, timed_order_++, line});
   std::push_heap(timed_.begin(), timed_.end(), std::greater<>());
   clock_->request(start);
   wait_for(line, slot, t);
+  return kPendingCycle;
 }
 
 void L1Cache::send_due(uint64_t now) {

@@ -100,8 +100,9 @@ class L1Cache final : public sc_core::sc_module, public MemoryReadIf, public Lin
   // The pending path (approximately timed memory only).
   void wait_for(uint64_t line, uint32_t slot, uint64_t t);
   void defer_miss(uint64_t line, uint32_t slot, uint64_t t);
-  /// A miss found at `t` that leaves at `start` (> t): sent by send_due.
-  void defer_until(uint64_t line, uint32_t slot, uint64_t t, uint64_t start);
+  /// A miss found at `t` that leaves at `start` (> t): allocated and holding
+  /// its MSHR now, sent by send_due; kPendingCycle (out of line: the rare path).
+  __attribute__((noinline, cold)) uint64_t defer_until(uint64_t line, uint32_t slot, uint64_t t, uint64_t start);
   uint64_t pend_read(uint32_t slot, uint32_t lines, uint64_t ready);
   void answer(uint32_t slot, uint64_t ready);
   void send_deferred();

@@ -41,7 +41,7 @@ RaySource::RaySource(sc_core::sc_module_name name, const HwConfig& config, Funct
       independent_missing_(config.source.missing_parents == MissingParents::Independent), lanes_(lanes_count_),
       ready_(window_ + 1) {
   ring_.reserve(std::min<uint32_t>(capacity_, 4096));
-  finish_.reserve(std::min<uint64_t>(history_capacity_, 1u << 16));
+  finish_.reserve(std::min<uint64_t>(history_capacity_, uint64_t{1} << 20));  // address space only until rays arrive
   const SourceCounters& c = counters_;
   const EmissionCounters& e = emission_;
   declare_stat("rays", "rays", "rays read from the trace and emitted", c.rays);

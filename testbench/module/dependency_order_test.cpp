@@ -13,8 +13,7 @@
 #include <unordered_map>
 
 #include "hw/cycle_replay.h"
-#include "replay/replay_run.h"
-#include "trace/trace_file.h"
+#include "trace_in_memory.h"
 #include "../system/run_vbsim.h"
 #include "../unit/three_floors.h"
 
@@ -24,18 +23,7 @@ using namespace vbsim::hw::test;
 
 namespace {
 
-struct Trace {
-  SceneAndBvh sb;
-  std::vector<TraceRay> rays;
-};
-
-Trace read_trace(const std::string& path) {
-  auto src = open_trace(path);
-  Trace t{load_trace_scene(src->header()), {}};
-  TraceRay r;
-  while (src->next(r)) t.rays.push_back(r);
-  return t;
-}
+using Trace = TraceInMemory;
 
 /// `rays` in breadth-first order: by generation (a camera ray 0, its children
 /// 1, ...), trace order within one; ids renumbered 0, 1, 2, ... in the new

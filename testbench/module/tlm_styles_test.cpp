@@ -12,8 +12,7 @@
 #include "accelerator_harness.h"
 #include "hw/cycle_replay.h"
 #include "recording_memory.h"
-#include "replay/replay_run.h"
-#include "trace/trace_file.h"
+#include "trace_in_memory.h"
 #include "../system/run_vbsim.h"
 #include "../unit/three_floors.h"
 
@@ -23,18 +22,7 @@ using namespace vbsim::hw::test;
 
 namespace {
 
-struct Trace {
-  SceneAndBvh sb;
-  std::vector<TraceRay> rays;
-};
-
-Trace read_trace(const std::string& path) {
-  auto src = open_trace(path);
-  Trace t{load_trace_scene(src->header()), {}};
-  TraceRay r;
-  while (src->next(r)) t.rays.push_back(r);
-  return t;
-}
+using Trace = TraceInMemory;
 
 struct Timed {
   uint64_t cycles = 0;
