@@ -143,7 +143,7 @@ void RaySource::enter(uint64_t pos, uint64_t now) {
   e.state = State::Ready;
   ++counters_.rays;
   note_position(tr.id, pos);  // the ray leaving the history goes first
-  finish_at(pos) = Finish{};
+  finish_at(pos) = Finish{kUnfinished, tr.id, kNone};
   if (config_.dependencies) {
     if (!unresolved_.empty()) {
       const auto child = unresolved_.find(tr.id);
@@ -241,23 +241,18 @@ void RaySource::note_position(int64_t id, uint64_t pos) {
     ids_dense_ = false;
     position_of_ = std::make_unique<IdPositionMap>(static_cast<uint32_t>(
         std::min<uint64_t>(parent_window_ + 1, uint64_t{1} << 31)));
-    history_ids_.assign(history_capacity_, 0);
-    for (uint64_t p = pos > parent_window_ ? pos - parent_window_ : 0; p < pos; ++p) {
-      const int64_t pid = first_id_ + static_cast<int64_t>(p);
-      position_of_->set(pid, p);
-      history_ids_[p & (history_capacity_ - 1)] = pid;
-    }
+    for (uint64_t p = pos > parent_window_ ? pos - parent_window_ : 0; p < pos; ++p)
+      position_of_->set(finish_at(p).id, p);
   }
   if (pos > parent_window_) {  // the ray parent_window_ + 1 back leaves the history
     const uint64_t old = pos - parent_window_ - 1;
-    position_of_->erase(history_ids_[old & (history_capacity_ - 1)], old);
+    position_of_->erase(finish_at(old).id, old);
   }
   uint64_t seen = 0;
   if (position_of_->find(id, seen))
     fail(pos, "id",
          fmt::format("duplicate id {}: the ray at trace position {} has it too (a ray id names one ray)", id, seen));
   position_of_->set(id, pos);
-  history_ids_[pos & (history_capacity_ - 1)] = id;
 }
 
 void RaySource::make_ready(uint64_t pos, uint64_t cycle) {

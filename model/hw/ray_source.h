@@ -14,10 +14,10 @@
 // parent_window, the same window the functional replay finds parent rays in)
 // is ready `shader.latency_cycles` after that parent's result reached the
 // result sink (the shader that emits it has seen the hit), whatever the trace
-// order and the emission window: the source keeps the finish cycle of each of
-// those rays (8 bytes a ray, and an id table of 16 bytes a slot at a load of at
-// most 1/2 once ids stop running in trace order), so a parent far behind the
-// buffer is still waited for. A ray without a parent is ready when it enters.
+// order and the emission window: the source keeps the finish cycle and id of
+// each of those rays (24 bytes a ray, and an id table of 16 bytes a slot at a
+// load of at most 1/2 once ids stop running in trace order; both grow as rays
+// arrive), so a parent far behind the buffer is still waited for. A ray without a parent is ready when it enters.
 // A child whose parent is not among those rays (absent from the trace, later
 // in it, or further back) is an error naming the child's line; with
 // `source.missing_parents` "independent" it is ready on entry instead, counted
@@ -178,6 +178,7 @@ class RaySource final : public sc_core::sc_module, public StatProvider {
   /// wait for the shader, the ring place of their group's first child.
   struct Finish {
     uint64_t cycle = kUnfinished;
+    int64_t id = 0;  ///< the ray's id (the id table's entries leave the history by it)
     uint32_t group = kNone;
   };
   Finish& finish_at(uint64_t pos) { return finish_[pos & (history_capacity_ - 1)]; }
@@ -221,7 +222,6 @@ class RaySource final : public sc_core::sc_module, public StatProvider {
   bool ids_dense_ = true;
   int64_t first_id_ = 0;
   std::unique_ptr<IdPositionMap> position_of_;
-  std::vector<int64_t> history_ids_;  ///< with position_of_: the id at each history place
   struct Unresolved {
     uint64_t pos;  ///< the child's trace position
     int64_t id;    ///< and id

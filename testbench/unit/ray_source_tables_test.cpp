@@ -13,30 +13,34 @@
 using namespace vbsim::hw;
 
 TEST_CASE("the id table finds what a std::map holds through inserts and erasures", "[hw][source]") {
-  std::mt19937_64 rng(11);
-  const uint32_t capacity = 64;
-  IdPositionMap table(capacity);
-  std::map<int64_t, uint64_t> model;
-  std::vector<std::pair<int64_t, uint64_t>> live;  // in insertion order
-  for (uint64_t pos = 0; pos < 20000; ++pos) {
-    if (live.size() == capacity) {  // the oldest leaves, as the source's history does
-      table.erase(live.front().first, live.front().second);
-      model.erase(live.front().first);
-      live.erase(live.begin());
-    }
-    // Ids from a small range collide in the table; each id is live at most once.
-    int64_t id;
-    do id = static_cast<int64_t>(rng() % 300) - 100;
-    while (model.count(id));
-    table.set(id, pos);
-    model[id] = pos;
-    live.push_back({id, pos});
-    for (int k = 0; k < 4; ++k) {
-      const int64_t probe = static_cast<int64_t>(rng() % 300) - 100;
-      uint64_t got = 0;
-      const bool found = table.find(probe, got);
-      REQUIRE(found == (model.count(probe) == 1));
-      if (found) REQUIRE(got == model[probe]);
+  // Capacity 64: the first table holds it; 5000: the table doubles as ids arrive.
+  for (const uint32_t capacity : {64u, 5000u}) {
+    INFO("capacity " << capacity);
+    std::mt19937_64 rng(11);
+    const int64_t range = capacity < 100 ? 300 : 5 * int64_t{capacity};
+    IdPositionMap table(capacity);
+    std::map<int64_t, uint64_t> model;
+    std::vector<std::pair<int64_t, uint64_t>> live;  // in insertion order
+    for (uint64_t pos = 0; pos < 20000; ++pos) {
+      if (live.size() == capacity) {  // the oldest leaves, as the source's history does
+        table.erase(live.front().first, live.front().second);
+        model.erase(live.front().first);
+        live.erase(live.begin());
+      }
+      // Ids from a small range collide in the table; each id is live at most once.
+      int64_t id;
+      do id = static_cast<int64_t>(rng() % range) - 100;
+      while (model.count(id));
+      table.set(id, pos);
+      model[id] = pos;
+      live.push_back({id, pos});
+      for (int k = 0; k < 4; ++k) {
+        const int64_t probe = static_cast<int64_t>(rng() % range) - 100;
+        uint64_t got = 0;
+        const bool found = table.find(probe, got);
+        REQUIRE(found == (model.count(probe) == 1));
+        if (found) REQUIRE(got == model[probe]);
+      }
     }
   }
 }
