@@ -137,7 +137,7 @@ void Accelerator::set_tracing(VcdRecorder* vcd, TimelineRecorder* timeline) {
 }
 
 EngineParts Accelerator::engine_parts() {
-  EngineParts p{config_, replayer_, bvh_, *source_, *dispatcher_, dynamic_cast<Dispatcher*>(dispatcher_), *sink_, {}, false, nullptr, false, nullptr, nullptr, {}};
+  EngineParts p{config_, replayer_, bvh_, *source_, *dispatcher_, dynamic_cast<Dispatcher*>(dispatcher_), *sink_, {}, false, nullptr, false, nullptr, nullptr, {}, nullptr, {}};
   bool all_l1 = true, all_ideal = ideal_ != nullptr;
   for (RayTestCore& c : cores_) {
     MemoryReadIf* mem = c.memory.operator->();

@@ -109,17 +109,16 @@ class Engine final : public CycleEngine, private SourceHost {
   void resume(uint32_t slot, uint64_t ready) override {
     if (slot >= source_id_ || !slots_[slot].parked || slots_[slot].resumed)
       throw std::runtime_error(fmt::format("{}: an answer (ReadDoneIf::read_done) for slot {}, which waits for no read",
-                                           instance_name(cores_[std::min<size_t>(slot / cfg_.slots_per_core, cores_.size() - 1)].memory, "memory"), slot));
+                                           memory_name(slot), slot));
     if (ready < last_handled_)
       throw std::runtime_error(fmt::format(
           "{}: the read of slot {} issued at cycle {} was answered cycle {}, before cycle {} that the accelerator "
           "has reached (ReadDoneIf::read_done must not answer a cycle already handled)",
-          instance_name(cores_[slots_[slot].core].memory, "memory"), slot, slots_[slot].requested, ready, last_handled_));
+          memory_name(slot), slot, slots_[slot].requested, ready, last_handled_));
     slots_[slot].resumed = true;
     --parked_;
     events_.schedule(ready, resumed_id_ + slot);  // the step's second half runs at `ready`
   }
-
   std::string slot_report(size_t max_slots) const override;
 
  private:
@@ -195,6 +194,11 @@ class Engine final : public CycleEngine, private SourceHost {
     else if constexpr (std::is_same_v<Memory, IdealMemory>) return ideal_->read_inline(addr, bytes, now, id);
     else return checked_read(cores_[s.core], id, addr, bytes, now);
   }
+  /// The instance answering slot `slot`'s reads (the last core's for a slot out of range), for errors.
+  std::string memory_name(uint32_t slot) const {
+    const CoreBinding& c = cores_[std::min<size_t>(slot / cfg_.slots_per_core, cores_.size() - 1)];
+    return instance_name(c.memory, std::string(c.core->name()) + ".memory");
+  }
   /// A read through MemoryReadIf, its answer checked against the interface's contract.
   uint64_t checked_read(const CoreBinding& c, uint32_t id, uint64_t addr, uint32_t bytes, uint64_t now) {
     const uint64_t ready = c.memory->read(addr, bytes, now, id);
@@ -202,7 +206,7 @@ class Engine final : public CycleEngine, private SourceHost {
     throw std::runtime_error(fmt::format(
         "{}: a read of {} bytes at 0x{:x} issued at cycle {} was answered cycle {}: MemoryReadIf::read must answer "
         "a later cycle (or kPendingCycle)",
-        instance_name(c.memory, std::string(c.core->name()) + ".memory"), bytes, addr, now, ready));
+        memory_name(id), bytes, addr, now, ready));
   }
 
   /// Slot `id`'s next step, s.pending, completes at cycle `at`.

@@ -17,7 +17,6 @@ L1Cache::L1Cache(sc_core::sc_module_name name, const CacheConfig& config, uint32
   declare_stat("reads", "reads", "reads by the core (a node, a leaf's triangles, a stack refill)", reads_);
   declare_stat("bytes", "bytes", "bytes the core read", bytes_);
   declare_stats(cache_level_statistics(level_, "the L2", misses_sent_late_));
-
 }
 
 void L1Cache::connect_fast(L2Cache* l2) {
@@ -118,11 +117,15 @@ void L1Cache::defer_miss(uint64_t line, uint32_t slot, uint64_t t) {
 uint64_t L1Cache::defer_until(uint64_t line, uint32_t slot, uint64_t t, uint64_t start) {
   level_.install<0>(line, kPendingCycle, t);
   level_.hold_mshr(kPendingCycle);
+  send_at(line, start);
+  wait_for(line, slot, t);
+  return kPendingCycle;
+}
+
+void L1Cache::send_at(uint64_t line, uint64_t start) {
   timed_.push_back({start, timed_order_++, line});
   std::push_heap(timed_.begin(), timed_.end(), std::greater<>());
   clock_->request(start);
-  wait_for(line, slot, t);
-  return kPendingCycle;
 }
 
 void L1Cache::send_due(uint64_t now) {
@@ -169,9 +172,7 @@ void L1Cache::send_deferred() {
     ++misses_sent_late_;
     level_.hold_mshr(kPendingCycle);
     if (clock_) {  // looked up in the L2 when it leaves, as every miss that waited for an MSHR
-      timed_.push_back({start, timed_order_++, d.line});
-      std::push_heap(timed_.begin(), timed_.end(), std::greater<>());
-      clock_->request(start);
+      send_at(d.line, start);
       continue;
     }
     if (vcd_) vcd_->add(vcd_misses_, start, +1);

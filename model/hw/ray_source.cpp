@@ -136,7 +136,6 @@ void RaySource::enter(uint64_t pos, uint64_t now) {
   SourceRay& ray = record(e);
   const TraceRay& tr = ray.tr;
   ray.index = e.index = pos;
-  e.id = tr.id;
   ray.er = replayer_.emit(tr);  // in trace order: a parent before its children
   e.entered = ray.entered = now;
   e.first_child = e.next_sibling = kNone;
@@ -159,41 +158,36 @@ void RaySource::enter(uint64_t pos, uint64_t now) {
       const ParentAt where = find_parent(tr.parent, pos, parent_pos);
       if (where != ParentAt::Found) {
         parent_not_found(tr, pos, where);
-      } else if (finish_at(parent_pos).cycle == kUnfinished) {
-        // In the buffer (every position before base_ has finished): ready with
-        // the parent's other children once its result has been shaded.
-        Entry& parent = at_pos(parent_pos);
-        e.state = State::Waiting;
-        e.parent = parent_pos;
-        ++waiting_count_;
-        ++emission_.children_waited;
-        e.next_sibling = parent.first_child;
-        parent.first_child = place_of(pos);
-        return;
-      } else if (finish_at(parent_pos).cycle + latency_ > now) {
-        ++emission_.children_waited;
-        return wait_for_shader(pos, parent_pos, finish_at(parent_pos).cycle + latency_);
+      } else if (const uint64_t done = finish_at(parent_pos).cycle; done == kUnfinished || done + latency_ > now) {
+        return wait_for_parent(pos, parent_pos);
       }
     }
   }
   make_ready(pos, now);
 }
 
-void RaySource::wait_for_shader(uint64_t pos, uint64_t parent_pos, uint64_t cycle) {
+void RaySource::wait_for_parent(uint64_t pos, uint64_t parent_pos) {
   Entry& e = at_pos(pos);
   e.state = State::Waiting;
   e.parent = parent_pos;
   ++waiting_count_;
+  ++emission_.children_waited;
   Finish& parent = finish_at(parent_pos);
-  if (parent.group != kNone) {  // joins the children its parent's event makes ready
+  if (parent.cycle == kUnfinished) {
+    // In the buffer (every position before base_ has finished): ready with the
+    // parent's other children once its result has been shaded (on_finish).
+    Entry& p = at_pos(parent_pos);
+    e.next_sibling = p.first_child;
+    p.first_child = place_of(pos);
+  } else if (parent.group != kNone) {  // joins the children its parent's event makes ready
     Entry& head = ring_[parent.group];
     e.next_sibling = head.next_sibling;
     head.next_sibling = place_of(pos);
-    return;
+  } else {  // the group's event at its first child's place: it stays while the child waits
+    e.next_sibling = kNone;
+    parent.group = place_of(pos);
+    host_->schedule_source_event(lanes_count_ + parent.group, parent.cycle + latency_);
   }
-  e.next_sibling = kNone;
-  parent.group = place_of(pos);  // the group's event at its first child's place: it stays while the child waits
-  host_->schedule_source_event(lanes_count_ + parent.group, cycle);
 }
 
 void RaySource::fail(uint64_t pos, const std::string& field, const std::string& what) const {

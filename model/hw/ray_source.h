@@ -17,14 +17,14 @@
 // order and the emission window: the source keeps the finish cycle and id of
 // each of those rays (24 bytes a ray, and an id table of 16 bytes a slot at a
 // load of at most 1/2 once ids stop running in trace order; both grow as rays
-// arrive), so a parent far behind the buffer is still waited for. A ray without a parent is ready when it enters.
-// A child whose parent is not among those rays (absent from the trace, later
-// in it, or further back) is an error naming the child's line; with
-// `source.missing_parents` "independent" it is ready on entry instead, counted
-// (`parents_not_found`, the first one's line kept for a warning), and a parent
-// that turns up after its child is then an error naming the parent's line. A
-// ray id that repeats one of those rays' ids is an error. Off: every ray ready
-// at once, as a trace of unrelated queries.
+// arrive), so a parent far behind the buffer is still waited for. A ray
+// without a parent is ready when it enters. A child whose parent is not among
+// those rays (absent from the trace, later in it, or further back) is an error
+// naming the child's line; with `source.missing_parents` "independent" it is
+// ready on entry instead, counted (`parents_not_found`, the first one's line
+// kept for a warning), and a parent that turns up after its child is then an
+// error naming the parent's line. A ray id that repeats one of those rays' ids
+// is an error. Off: every ray ready at once, as a trace of unrelated queries.
 //
 // Emission. `source.rays_per_cycle` lanes each take the ready ray earliest in
 // trace order (a waiting child does not hold back the ready rays behind it) and
@@ -129,7 +129,6 @@ class RaySource final : public sc_core::sc_module, public StatProvider {
   /// Small, so that the ring stays in the host's caches; the ray record itself
   /// is staged (below) only until it is dispatched.
   struct Entry {
-    int64_t id = 0;
     uint64_t index = 0;  ///< its trace position
     uint64_t entered = 0;
     uint64_t parent = 0;  ///< waiting: its parent's trace position
@@ -171,9 +170,10 @@ class RaySource final : public sc_core::sc_module, public StatProvider {
   /// A child at `pos` whose parent is not where it must be: an error naming
   /// its line, or (missing_parents "independent") counted.
   void parent_not_found(const TraceRay& tr, uint64_t pos, ParentAt where);
-  /// The ray at `pos` waits for its finished parent at `parent_pos`, whose
-  /// children are ready at `cycle` (its result plus the shading latency).
-  void wait_for_shader(uint64_t pos, uint64_t parent_pos, uint64_t cycle);
+  /// The ray at `pos` waits for its parent at `parent_pos` (unfinished, or
+  /// finished less than the shading latency ago): ready with the parent's other
+  /// children when its result has been shaded.
+  void wait_for_parent(uint64_t pos, uint64_t parent_pos);
   /// A position's finish cycle (kUnfinished until then) and, while its children
   /// wait for the shader, the ring place of their group's first child.
   struct Finish {
