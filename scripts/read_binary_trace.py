@@ -72,6 +72,8 @@ def read_header(path):
         text = f.read(padded)
         if len(text) != padded:
             raise BinaryTraceError(f"{path}: header: truncated")
+    if not text[:n].endswith(b"}"):
+        raise BinaryTraceError(f"{path}: header: the header JSON does not end at its stated length {int(n)}")
     header = json.loads(text[:n].decode("utf-8"))
     if header.get("format") != "vbsim-trace" or header.get("version") != 1:
         raise BinaryTraceError(f"{path}: header: not a version 1 vbsim trace header")

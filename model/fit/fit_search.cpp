@@ -5,6 +5,7 @@
 
 #include "replay/functional_replayer.h"
 #include "score/parallel_for.h"
+#include "trace/checked_trace_source.h"
 #include "trace/trace_file.h"
 
 namespace vbsim {
@@ -92,7 +93,8 @@ std::vector<std::pair<size_t, size_t>> scored_rays(const std::vector<FitTrace>& 
 FitTrace load_fit_trace(const std::string& path) {
   FitTrace t;
   t.path = path;
-  t.source = open_trace(path);
+  t.file = open_trace(path);
+  t.source = std::make_unique<CheckedTraceSource>(*t.file, TraceConsistencyChecker::Options{});
   t.scene = load_trace_scene(t.source->header());
   check_traversal_depth(t.scene.bvh);
   t.source->set_triangle_count(t.scene.scene.size());

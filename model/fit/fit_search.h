@@ -26,7 +26,8 @@ namespace vbsim {
 /// A trace held in memory with its scene, for repeated replays of single rays.
 struct FitTrace {
   std::string path;
-  std::unique_ptr<TraceSource> source;
+  std::unique_ptr<TraceSource> file;    ///< the trace file's reader
+  std::unique_ptr<TraceSource> source;  ///< `file` through the consistency checks (a child after its parent)
   SceneAndBvh scene;
   std::unique_ptr<TraceBlocks> blocks;  ///< one block: every ray of the trace
   const std::vector<TraceRay>& rays() const { return blocks->rays(); }

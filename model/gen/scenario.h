@@ -25,7 +25,13 @@ class ScenarioSettings {
   /// Throws std::runtime_error ("option '--rays': must be > 0") unless rays > 0.
   ScenarioSettings(int64_t rays, uint64_t seed, std::map<std::string, std::string> values);
   int64_t rays() const { return rays_; }
-  uint64_t seed() const { return seed_; }
+  uint64_t seed() const {
+    seed_read_ = true;
+    return seed_;
+  }
+  /// Whether the scenario asked for the seed (a scenario that is the same for
+  /// every seed, such as random-triangles protocol=pbrt-v4, never does).
+  bool seed_read() const { return seed_read_; }
   /// The value of `key` as a finite number, or `fallback` when not set.
   double number(const std::string& key, double fallback) const;
   /// The value of `key` as an integer, or `fallback` when not set.
@@ -41,6 +47,7 @@ class ScenarioSettings {
   uint64_t seed_;
   std::map<std::string, std::string> values_;
   mutable std::set<std::string> read_;
+  mutable bool seed_read_ = false;
 };
 
 /// One scene and its rays.

@@ -164,7 +164,17 @@ HwConfig resolve_hw_config(const std::string& path, const std::string& preset) {
   }
   if (!preset.empty() && hw.is_object()) hw.erase("preset");  // the command line wins
   HwConfig cfg = load_preset(preset.empty() ? "small" : preset, "command line: option '--preset'");
-  apply_hw_config(hw, path.empty() ? "command line" : path, cfg);
+  const std::string origin = path.empty() ? "command line" : path;
+  apply_hw_config(hw, origin, cfg);
+  // The memory's checks across fields, here where the file can be named (the
+  // accelerator repeats them for a configuration built in code).
+  try {
+    check_memory_config(cfg.memory, static_cast<int>(cfg.cores));
+  } catch (const std::invalid_argument& e) {
+    const std::string what = e.what();  // "memory.l1.hit_latency: must be ..."
+    const std::size_t colon = what.find(": ");
+    fail(origin, "hw." + what.substr(0, colon), colon == std::string::npos ? what : what.substr(colon + 2));
+  }
   return cfg;
 }
 

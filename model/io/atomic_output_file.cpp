@@ -33,6 +33,16 @@ extern "C" void remove_temporaries_and_reraise(int sig) {
   std::raise(sig);
 }
 
+int g_interrupt_exit_code = 130;
+
+extern "C" void remove_temporaries_and_exit(int) {
+  for (int i = 0; i < kCleanupSlots; ++i)
+    if (g_cleanup_used[i].load()) ::unlink(g_cleanup_paths[i].data());
+  static const char kMessage[] = "vbsim: interrupted\n";
+  [[maybe_unused]] const ssize_t n = ::write(2, kMessage, sizeof kMessage - 1);
+  ::_exit(g_interrupt_exit_code);
+}
+
 /// Installs the cleanup handler for SIGINT and SIGTERM where their action is
 /// still the default (a program's own handler stays in charge).
 void install_cleanup_handlers() {
@@ -134,6 +144,12 @@ void AtomicOutputFile::discard() noexcept {
   if (out_.is_open()) out_.close();
   if (!in_place_) ::unlink(temp_.c_str());
   unregister_temporary(registry_slot_);
+}
+
+void exit_on_interrupt(int exit_code) {
+  g_interrupt_exit_code = exit_code;
+  g_handlers_installed = true;  // this handler removes the temporaries too
+  for (int sig : {SIGINT, SIGTERM}) std::signal(sig, remove_temporaries_and_exit);
 }
 
 void write_output_file(const std::string& path, const std::string& text, const char* what) {

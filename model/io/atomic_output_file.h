@@ -60,6 +60,12 @@ class AtomicOutputFile {
   bool done_ = false, committed_ = false;
 };
 
+/// Makes SIGINT and SIGTERM remove the temporaries of every open
+/// AtomicOutputFile, print "vbsim: interrupted" on stderr and end the process
+/// with `exit_code` (a program's own handler, installed later, takes over
+/// while it is installed and gives this one back).
+void exit_on_interrupt(int exit_code);
+
 /// Writes `text` to `path` through an AtomicOutputFile; throws OutputError
 /// naming `what` ("stats file") and the path.
 void write_output_file(const std::string& path, const std::string& text, const char* what);

@@ -10,12 +10,25 @@ namespace fs = std::filesystem;
 
 namespace {
 
+/// The path `path` leads to once every symbolic link is followed, also a
+/// dangling one (whose target a write would create), normalised.
+fs::path resolved(const std::string& path) {
+  std::error_code ec;
+  fs::path p = fs::absolute(path, ec);
+  for (int hops = 0; hops < 40 && fs::is_symlink(fs::symlink_status(p, ec)); ++hops) {
+    const fs::path target = fs::read_symlink(p, ec);
+    if (ec) break;
+    p = target.is_absolute() ? target : p.parent_path() / target;
+  }
+  return fs::weakly_canonical(p, ec);
+}
+
 /// Whether `a` and `b` name the same file: the same inode when both exist,
-/// else the same normalised absolute path (an output not created yet).
+/// else the same resolved path (an output not created yet).
 bool same_file(const std::string& a, const std::string& b) {
   std::error_code ec;
   if (fs::exists(a, ec) && fs::exists(b, ec)) return fs::equivalent(a, b, ec) && !ec;
-  return fs::weakly_canonical(fs::absolute(a, ec), ec) == fs::weakly_canonical(fs::absolute(b, ec), ec);
+  return resolved(a) == resolved(b);
 }
 
 /// Outputs written in place (devices, FIFOs) may be shared: nothing is replaced.

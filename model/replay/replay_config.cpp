@@ -4,9 +4,11 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <mutex>
 
+#include "io/json_document.h"
 #include "replay/config_fields.h"
 
 namespace vbsim {
@@ -104,9 +106,10 @@ nlohmann::json read_config_json(const std::string& path) {
   if (!in) throw ConfigError(fmt::format("{}: cannot open config file: {}", path, std::strerror(errno)));
   nlohmann::json j;
   try {
-    j = nlohmann::json::parse(in);
-  } catch (const nlohmann::json::exception& e) {  // a syntax error, or a number beyond double (out_of_range)
-    throw ConfigError(fmt::format("{}: not valid JSON: {}", path, e.what()));
+    // Bounded nesting, no repeated key, numbers within double (io/json_document.h).
+    j = parse_json_document(std::string(std::istreambuf_iterator<char>(in), {}), path);
+  } catch (const JsonDocumentError& e) {
+    throw ConfigError(e.what());
   }
   // A whole stats file: its `config` block is the configuration.
   if (j.is_object() && j.contains("config") && j["config"].is_object()) j = j["config"];

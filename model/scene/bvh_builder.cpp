@@ -153,6 +153,29 @@ BvhRef flatten(const BuildNode* node, int depth, const Scene& scene, Bvh& bvh) {
   return BvhRef{index, 0};
 }
 
+// Embree's builder computes box areas and SAH costs in float32: they underflow
+// to 0 for scenes whose coordinates are all tiny (the bunny scaled by 1e-25:
+// "depth limit reached") and overflow for huge ones. The boxes it sees are
+// therefore scaled by a power of two, which is exact for normal floats, so that
+// the largest |coordinate| lies in [1, 2) whenever it is outside
+// [2^-32, 2^32]; scenes inside that range are handed over as they are. Only the
+// tree's shape comes from Embree (bounds are recomputed from the triangles),
+// so the scale changes no box that traversal tests.
+void scale_for_builder(std::vector<RTCBuildPrimitive>& prims, float largest) {
+  if (largest == 0.0f || (largest >= 0x1p-32f && largest <= 0x1p32f)) return;
+  int exponent = 0;
+  std::frexp(largest, &exponent);  // largest = m * 2^exponent, m in [0.5, 1)
+  const int shift = 1 - exponent;  // largest * 2^shift in [1, 2)
+  for (RTCBuildPrimitive& p : prims) {
+    p.lower_x = std::ldexp(p.lower_x, shift);
+    p.lower_y = std::ldexp(p.lower_y, shift);
+    p.lower_z = std::ldexp(p.lower_z, shift);
+    p.upper_x = std::ldexp(p.upper_x, shift);
+    p.upper_y = std::ldexp(p.upper_y, shift);
+    p.upper_z = std::ldexp(p.upper_z, shift);
+  }
+}
+
 // Owns an RTCBVH (and with it every BuildNode).
 struct BvhHandle {
   RTCBVH bvh;
@@ -172,13 +195,17 @@ Bvh build_bvh(const Scene& scene, const BvhBuildOptions& options) {
   if (scene.triangles.empty()) return bvh;  // no nodes, no triangles, depth 0
 
   std::vector<RTCBuildPrimitive> prims(scene.triangles.size());
+  float largest = 0.0f;  // largest |coordinate|
   for (size_t i = 0; i < prims.size(); ++i) {
     const Triangle& t = scene.triangles[i];
     if (!is_finite(t.v0) || !is_finite(t.v1) || !is_finite(t.v2))
       throw SceneError(fmt::format("scene '{}': triangle {} has a non-finite vertex", scene.source, i));
     const Bounds3f b = triangle_bounds(t);
+    for (int axis = 0; axis < 3; ++axis)
+      largest = std::max({largest, std::fabs(b.lo[axis]), std::fabs(b.hi[axis])});
     prims[i] = RTCBuildPrimitive{b.lo.x, b.lo.y, b.lo.z, 0u, b.hi.x, b.hi.y, b.hi.z, static_cast<unsigned>(i)};
   }
+  scale_for_builder(prims, largest);
 
   EmbreeDevice device;
   BvhHandle handle{rtcNewBVH(device.get())};
@@ -203,7 +230,11 @@ Bvh build_bvh(const Scene& scene, const BvhBuildOptions& options) {
   args.userPtr = &context;
 
   auto* root = static_cast<BuildNode*>(rtcBuildBVH(&args));
-  device.check("rtcBuildBVH");
+  try {
+    device.check("rtcBuildBVH");
+  } catch (const SceneError& e) {
+    throw SceneError(fmt::format("scene '{}': {}", scene.source, e.what()));
+  }
   if (context.out_of_memory) throw SceneError("Embree rtcBuildBVH: out of memory for BVH nodes");
   if (context.unexpected_shape) throw SceneError("Embree rtcBuildBVH built a node without exactly 2 children");
 

@@ -16,6 +16,14 @@ struct SceneError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// Largest |coordinate| of a scene vertex (after the trace's transform), 2^126
+/// (about 8.5e37); every finite float32 up to it, denormals included, is
+/// supported. Within it, the difference of two coordinates (a box's extent, a
+/// triangle's edge, a vertex seen from a ray origin in the scene) is finite in
+/// float32; beyond, a scene spanning both signs has extents of infinity, on
+/// which Embree's BVH builder aborted (docs/scene.md).
+constexpr float kMaxSceneCoordinate = 0x1p126f;
+
 struct Bounds3f {
   Vec3f lo{INFINITY, INFINITY, INFINITY};
   Vec3f hi{-INFINITY, -INFINITY, -INFINITY};

@@ -14,6 +14,7 @@
 //     skipped and take no number;
 //   - vertex positions are used as the file gives them: the node hierarchy's
 //     transforms are NOT applied (only the optional trace-header transform is).
+#include <cmath>
 #include <assimp/Importer.hpp>
 #include <assimp/MemoryIOWrapper.h>
 #include <assimp/config.h>
@@ -112,6 +113,12 @@ class SceneBuilder {
       if (!is_finite(v[k]))
         throw SceneError(fmt::format("scene '{}': {} (triangle {}) has a non-finite vertex ({}, {}, {}){}", path_,
                                      where(), number, v[k].x, v[k].y, v[k].z, xform_ ? " after the transform" : ""));
+      if (!(std::fabs(v[k].x) <= kMaxSceneCoordinate && std::fabs(v[k].y) <= kMaxSceneCoordinate &&
+            std::fabs(v[k].z) <= kMaxSceneCoordinate))
+        throw SceneError(fmt::format("scene '{}': {} (triangle {}) has the vertex ({}, {}, {}){}, beyond the "
+                                     "supported coordinate range of +-2^126 (about 8.5e37; docs/scene.md)",
+                                     path_, where(), number, v[k].x, v[k].y, v[k].z,
+                                     xform_ ? " after the transform" : ""));
       if (with_normals_) {
         corner_normals[k] = xform_ ? xform_->normal(n[k]) : n[k];
         if (!is_finite(corner_normals[k]))

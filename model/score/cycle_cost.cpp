@@ -5,8 +5,10 @@
 namespace vbsim {
 
 CycleCost cycle_replay_cost(const hw::RayFeed& feed, const Scene& scene, const Bvh& bvh, const ReplayOptions& opt,
-                            const hw::HwConfig& cfg) {
-  const hw::CycleRunResult run = hw::run_cycle_replay(feed, scene, bvh, opt, cfg, hw::RayResultSink{}, {});
+                            const hw::HwConfig& cfg, const hw::RayLocator& locate) {
+  hw::CycleRunOptions options;
+  options.locator = locate;
+  const hw::CycleRunResult run = hw::run_cycle_replay(feed, scene, bvh, opt, cfg, hw::RayResultSink{}, options);
   CycleCost c;
   c.rays = run.counters.rays;
   c.cycles = run.counters.cycles;

@@ -23,8 +23,9 @@ struct CycleCost {
 
 /// Replays the rays `feed` gives (one trace, parents before children, streamed:
 /// nothing of the trace is held beyond the model's own window) through the
-/// cycle-level model of `cfg` on `scene`/`bvh` under `opt`.
+/// cycle-level model of `cfg` on `scene`/`bvh` under `opt`. `locate` names a
+/// ray's file and line in the errors the model finds (may be empty).
 CycleCost cycle_replay_cost(const hw::RayFeed& feed, const Scene& scene, const Bvh& bvh, const ReplayOptions& opt,
-                            const hw::HwConfig& cfg);
+                            const hw::HwConfig& cfg, const hw::RayLocator& locate = {});
 
 }  // namespace vbsim

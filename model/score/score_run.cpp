@@ -13,6 +13,7 @@
 #include "score/cycle_cost.h"
 #include "score/parallel_for.h"
 #include "score/trace_blocks.h"
+#include "trace/checked_trace_source.h"
 #include "trace/trace_file.h"
 
 namespace vbsim {
@@ -51,7 +52,10 @@ CycleCost trace_cycle_cost(const std::string& path, const SceneAndBvh& sb, const
   ReplayOptions opt = c.options;
   opt.parent_window = run.parent_window;
   const hw::RayFeed feed = [&](TraceRay& tr) { return source->next(tr); };
-  return cycle_replay_cost(feed, sb.scene, sb.bvh, opt, run.hw);
+  const hw::RayLocator locate = [&](const std::string& field, const std::string& message) {
+    return std::string(source->error_at_last_ray(field, message).what());
+  };
+  return cycle_replay_cost(feed, sb.scene, sb.bvh, opt, run.hw, locate);
 }
 
 /// Replays one trace with every configuration, adding into cells[0..configs),
@@ -59,11 +63,13 @@ CycleCost trace_cycle_cost(const std::string& path, const SceneAndBvh& sb, const
 /// cycle-level model for every timed configuration, one after the other.
 void score_trace(const std::string& path, const std::vector<ScoreConfig>& configs,
                  std::vector<CandidateFilter>& filters, ScoreCell* cells, const ScoreRunOptions& run) {
-  auto source = open_trace(path);
-  const SceneAndBvh sb = load_trace_scene(source->header());
+  auto file = open_trace(path);
+  // The consistency checks every reader applies: a child after its parent (an error naming the line).
+  CheckedTraceSource source(*file, TraceConsistencyChecker::Options{});
+  const SceneAndBvh sb = load_trace_scene(source.header());
   check_traversal_depth(sb.bvh);
-  source->set_triangle_count(sb.scene.size());
-  TraceBlocks blocks(*source, run.parent_window);
+  source.set_triangle_count(sb.scene.size());
+  TraceBlocks blocks(source, run.parent_window);
   std::vector<ReplayStats> stats(configs.size());
   while (blocks.next_block(kBlockRays)) {
     parallel_for(configs.size(), run.threads, [&](size_t c) {
@@ -119,6 +125,11 @@ std::vector<ScoreFamily> collect_score_families(const std::vector<std::string>& 
     } else if (fs::is_regular_file(path)) {
       fam.name = path.stem().string();
       fam.traces.push_back(p);
+    } else if (fs::exists(path)) {
+      throw std::runtime_error(fmt::format("{}: not a regular file (a pipe or a device): score and fit read a trace "
+                                           "more than once (its header, its rays, and in cycle mode a second pass); "
+                                           "write it to a file first",
+                                           p));
     } else {
       throw std::runtime_error(fmt::format("{}: no such trace file or directory", p));
     }

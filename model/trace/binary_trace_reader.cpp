@@ -44,6 +44,18 @@ BinaryTraceReader::BinaryTraceReader(std::string path, std::ifstream in) : path_
                                                        "{}-byte header",
                                                        padded));
   header_text.resize(header_bytes);
+  // The JSON must fill exactly the stated length: a length that runs past the
+  // object (into the padding or the records) would swallow rays unseen. The
+  // JSON parser takes a NUL byte as the end of its input, so one is refused first.
+  const std::size_t nul = header_text.find('\0');
+  if (nul != std::string::npos)
+    throw TraceError::in_header(path_, "", fmt::format("the stated header length {} runs past the header JSON "
+                                                       "(a NUL byte at header byte {})",
+                                                       header_bytes, nul));
+  if (header_text.back() != '}')
+    throw TraceError::in_header(path_, "", fmt::format("the header JSON does not end at its stated length {} "
+                                                       "(the object's closing '}}' must be its last byte)",
+                                                       header_bytes));
   try {
     header_ = parse_trace_header(parse_json_object_line(header_text), path_);
   } catch (const TraceFieldProblem& p) {

@@ -65,7 +65,8 @@ nlohmann::json CheckedTraceSource::summary_json() const {
           {"warnings", warnings},
           {"first", first},
           {"parents_not_checked", checker_.parents_not_checked()},
-          {"order_unchecked", checker_.order_unchecked()}};
+          {"order_unchecked", checker_.order_unchecked()},
+          {"ids_not_checked", ids_not_checked()}};
 }
 
 std::string CheckedTraceSource::warning_lines(const std::string& program, bool with_missing_expect) const {

@@ -29,6 +29,7 @@ class CheckedTraceSource final : public TraceSource {
   /// (from the inner source) or a consistency error.
   bool next(TraceRay& out) override;
   void set_triangle_count(int32_t n) override { inner_.set_triangle_count(n); }
+  int64_t ids_not_checked() const override { return inner_.ids_not_checked(); }
   const std::string& path() const override { return inner_.path(); }
   TraceError error_at_last_ray(const std::string& field, const std::string& message) const override {
     return inner_.error_at_last_ray(field, message);
@@ -41,7 +42,7 @@ class CheckedTraceSource final : public TraceSource {
   const TraceConsistencyChecker& checker() const { return checker_; }
 
   /// The counts as statistics JSON: {"window", "warnings": {name: n}, "first": {name: text},
-  /// "parents_not_checked", "order_unchecked"}.
+  /// "parents_not_checked", "order_unchecked", "ids_not_checked"}.
   nlohmann::json summary_json() const;
   /// One line per warning kind that occurred (missing expect only when
   /// `with_missing_expect`), each prefixed with `program` ("vbsim replay").

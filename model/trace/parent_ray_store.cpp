@@ -26,7 +26,18 @@ std::string parent_window_message(int64_t parent, int64_t window) {
                      parent, window);
 }
 
-ParentRayStore::ParentRayStore(int64_t window) : window_(window) {
+std::string parent_unknown_message(int64_t parent, int64_t window, std::size_t ranges) {
+  return fmt::format("parent {} is not among the last {} rays (the parent window), and this trace's ids run in "
+                     "so many separate ranges (more than {}) that whether it came earlier is no longer known; "
+                     "renumber the trace's ids in trace order, or raise --parent-window",
+                     parent, window, ranges);
+}
+
+/// The record of dropped ids keeps as many ranges as the window has rays (at
+/// least 1024): its memory follows the window, never the trace.
+std::size_t dropped_ranges(int64_t window) { return static_cast<std::size_t>(std::max<int64_t>(window, 1024)); }
+
+ParentRayStore::ParentRayStore(int64_t window) : window_(window), dropped_(dropped_ranges(window)) {
   if (window < 1 || window > kMaxWindow)
     throw std::invalid_argument(fmt::format("parent window {} is not in 1..{}", window, kMaxWindow));
   table_.assign(kInitialTableSlots, 0);
@@ -92,7 +103,15 @@ void ParentRayStore::add(int64_t id, Vec3f o, Vec3f d) {
 const ParentRay* ParentRayStore::lookup(int64_t id) const {
   const uint32_t index = table_[find_slot(id)];
   if (index != 0) return &ring_[index - 1].ray;
-  if (id >= 0 && dropped_.contains(id)) throw ParentWindowError(parent_window_message(id, window_));
+  if (id < 0) return nullptr;
+  switch (dropped_.contains(id)) {
+    case TraceIdSet::Membership::Yes:
+      throw ParentWindowError(parent_window_message(id, window_));
+    case TraceIdSet::Membership::Unknown:  // never replayed with another meaning: refused
+      throw ParentWindowError(parent_unknown_message(id, window_, dropped_.max_ranges()));
+    case TraceIdSet::Membership::No:
+      break;
+  }
   return nullptr;
 }
 

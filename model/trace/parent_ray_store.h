@@ -16,9 +16,13 @@
 //   - Memory: at most `window` entries of 32 bytes plus a 4-byte index slot per
 //     entry at a load of at most 1/2, about 40 bytes a ray (5.2 MB for the
 //     default window), allocated as rays arrive. The record of dropped ids
-//     (TraceIdSet) is free while ids are dropped in the order k, k+1, k+2, ...
-//     (ids as trace positions); other orders cost a hash entry per dropped id
-//     that the run of consecutive ids has not reached.
+//     (trace_id_set.h) keeps ranges of consecutive ids, at most as many as
+//     the window has rays (at least 1024; about 64 bytes a range), whatever
+//     the trace's length or the order of its ids. Ids in trace order are one
+//     range. Past that many ranges the lowest ones merge, and a child whose
+//     parent id falls in a merged range and is not held is refused with
+//     ParentWindowError (whether that parent came earlier is no longer known),
+//     never replayed as if its parent had never come.
 #pragma once
 #include <cstdint>
 #include <stdexcept>
@@ -27,6 +31,7 @@
 #include <vector>
 
 #include "datapath/vec3.h"
+#include "trace/trace_id_set.h"
 #include "trace/trace_validation.h"
 
 namespace vbsim {
@@ -62,6 +67,9 @@ class ParentRayStore {
   const ParentRay* lookup(int64_t id) const;
 
   int64_t window() const { return window_; }
+  /// True while the record of dropped ids is exact (no ranges merged): lookup
+  /// then never throws for an id that was never added.
+  bool dropped_ids_exact() const { return dropped_.exact(); }
   /// Rays held now (at most window()).
   int64_t size() const { return static_cast<int64_t>(held_); }
 

@@ -4,31 +4,32 @@
 
 namespace vbsim {
 
-RecentIdWindow::RecentIdWindow(std::size_t capacity) : ids_(capacity) {
+RecentIdWindow::RecentIdWindow(std::size_t capacity) : capacity_(capacity) {
   if (capacity == 0) throw std::invalid_argument("RecentIdWindow: capacity must be at least 1");
 }
 
 std::size_t RecentIdWindow::slot_of(std::size_t k) const {
-  const std::size_t oldest = (next_ + ids_.size() - size_) % ids_.size();
-  return (oldest + k) % ids_.size();
+  const std::size_t oldest = (next_ + capacity_ - size_) % capacity_;
+  return (oldest + k) % capacity_;
 }
 
 std::size_t RecentIdWindow::push(int64_t id) {
   if (ascending_ && size_ > 0 && id <= ids_[slot_of(size_ - 1)]) {
     // From now on lookup needs an index: build it from the ring once.
     ascending_ = false;
-    index_.reserve(ids_.size());
+    index_.reserve(size_);
     for (std::size_t k = 0; k < size_; ++k) index_.emplace(ids_[slot_of(k)], slot_of(k));
   }
   const std::size_t slot = next_;
-  if (size_ == ids_.size()) {
+  if (size_ == capacity_) {
     if (!ascending_) index_.erase(ids_[slot]);
+    ids_[slot] = id;
   } else {
+    ids_.push_back(id);  // while filling, slot == size_: the ring grows with the rays
     ++size_;
   }
-  ids_[slot] = id;
   if (!ascending_) index_[id] = slot;
-  next_ = (next_ + 1) % ids_.size();
+  next_ = (next_ + 1) % capacity_;
   return slot;
 }
 

@@ -1,6 +1,6 @@
 // RecentIdWindow: the ids of the last W rays of a trace, in trace order, with
 // lookup by id. Memory is fixed at W slots (plus a W-entry hash index once ids
-// stop ascending), whatever the trace's length: the bounded state that the
+// stop ascending), reached as rays arrive, whatever the trace's length: the bounded state that the
 // trace consistency checks keep instead of a set of every id seen.
 //
 // Each ray occupies one slot (0 .. W-1), reused W rays later; a caller keeps
@@ -27,13 +27,14 @@ class RecentIdWindow {
   /// True while every id pushed so far was greater than the one before.
   bool ascending() const { return ascending_; }
   std::size_t size() const { return size_; }
-  std::size_t capacity() const { return ids_.size(); }
+  std::size_t capacity() const { return capacity_; }
 
  private:
   /// Slot of the k-th oldest id in the window (k in [0, size_)).
   std::size_t slot_of(std::size_t k) const;
 
-  std::vector<int64_t> ids_;
+  std::size_t capacity_;
+  std::vector<int64_t> ids_;  ///< grown as ids arrive, up to capacity_ (no window allocated up front)
   std::size_t next_ = 0;  ///< slot the next push writes
   std::size_t size_ = 0;
   bool ascending_ = true;

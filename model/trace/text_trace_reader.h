@@ -25,6 +25,7 @@ class TextTraceReader final : public TraceSource {
   /// line and field of the first rule a line breaks.
   bool next(TraceRay& out) override;
   void set_triangle_count(int32_t n) override { validator_.set_triangle_count(n); }
+  int64_t ids_not_checked() const override { return validator_.ids_not_checked(); }
   const std::string& path() const override { return path_; }
   TraceError error_at_last_ray(const std::string& field,
                                const std::string& message) const override;

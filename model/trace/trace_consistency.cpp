@@ -38,7 +38,7 @@ const char* trace_check_name(TraceCheck check) {
 bool trace_check_is_error(TraceCheck check) { return check == TraceCheck::ChildBeforeParent; }
 
 TraceConsistencyChecker::TraceConsistencyChecker(const Options& options)
-    : opt_(options), order_(options.window), recent_(options.window) {}
+    : opt_(options), order_(options.window) {}
 
 void TraceConsistencyChecker::check(const TraceRay& ray, int64_t position, const char* position_word,
                                     std::vector<TraceFinding>& out) {
@@ -58,6 +58,7 @@ void TraceConsistencyChecker::check(const TraceRay& ray, int64_t position, const
     if (!parent) ++parents_not_checked_;
     check_parent_data(ray, parent, out);
   }
+  if (step.slot == recent_.size()) recent_.emplace_back();  // filling: slots come in order 0, 1, 2, ...
   recent_[step.slot] = {ray.o, ray.d, ray.tmin, ray.tmax, ray.kind};
   check_sign(ray, out);
   if (!ray.has_expect)

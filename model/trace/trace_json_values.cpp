@@ -7,6 +7,8 @@
 #include <iterator>
 #include <limits>
 
+#include "io/json_document.h"
+
 namespace vbsim {
 
 namespace {
@@ -114,6 +116,11 @@ class LineSax {
     return true;
   }
   bool open(json&& container) {
+    // The depth is bounded before the DOM grows (io/json_document.h): code that
+    // walks or prints a value recurses once per level.
+    if (stack_.size() >= static_cast<std::size_t>(kMaxJsonDepth))
+      return fail(stack_.size() > 1 ? top_key_ : key_path_,
+                  fmt::format("nested deeper than {} levels of arrays and objects", kMaxJsonDepth));
     json* slot;
     if (stack_.empty()) {
       root_ = std::move(container);

@@ -29,6 +29,9 @@ class TraceSource {
   /// caller makes later (e.g. a parent id that a replay cannot find).
   virtual TraceError error_at_last_ray(const std::string& field,
                                        const std::string& message) const = 0;
+  /// Rays so far whose id could not be checked against every earlier id for a
+  /// duplicate (trace_validation.h, TraceRayValidator::ids_not_checked).
+  virtual int64_t ids_not_checked() const { return 0; }
 };
 
 class TraceSink {

@@ -70,23 +70,17 @@ bool check_trace_ray(const TraceRay& ray, int32_t triangle_count, TraceFieldProb
   return true;
 }
 
-bool TraceIdSet::insert(int64_t id) {
-  if (dense_end_ < 0) {  // the first id starts the dense run
-    dense_begin_ = id;
-    dense_end_ = id + 1;
-    return true;
-  }
-  if (id >= dense_begin_ && id < dense_end_) return false;
-  if (id != dense_end_) return sparse_.insert(id).second;
-  ++dense_end_;
-  while (!sparse_.empty() && sparse_.erase(dense_end_) == 1) ++dense_end_;
-  return true;
-}
-
 bool TraceRayValidator::check(const TraceRay& ray, TraceFieldProblem& problem) {
   if (!check_trace_ray(ray, triangle_count_, problem)) return false;
-  if (!ids_.insert(ray.id))
-    return fail(problem, "id", fmt::format("duplicate id {}", ray.id));
+  switch (ids_.insert(ray.id)) {
+    case TraceIdSet::Membership::Yes:
+      return fail(problem, "id", fmt::format("duplicate id {}", ray.id));
+    case TraceIdSet::Membership::Unknown:
+      ++ids_not_checked_;
+      break;
+    case TraceIdSet::Membership::No:
+      break;
+  }
   return true;
 }
 

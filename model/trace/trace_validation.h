@@ -3,9 +3,9 @@
 // (so they never produce a file a reader would reject).
 #pragma once
 #include <cstdint>
-#include <unordered_set>
 
 #include "trace/trace_error.h"
+#include "trace/trace_id_set.h"
 #include "trace/trace_record.h"
 
 namespace vbsim {
@@ -17,23 +17,6 @@ namespace vbsim {
 /// expect.t only with a hit in expect. On failure fills `problem`, returns false.
 bool check_trace_ray(const TraceRay& ray, int32_t triangle_count, TraceFieldProblem& problem);
 
-/// The ids seen so far, to reject duplicates. Ids arriving in order k, k+1,
-/// k+2, ... from any first id k cost no memory (one dense run); others go to a
-/// hash set (O(rays) ints at worst) until the run reaches them.
-class TraceIdSet {
- public:
-  /// Adds `id` (>= 0); false when it was already present.
-  bool insert(int64_t id);
-  /// Whether `id` has been added.
-  bool contains(int64_t id) const {
-    return (id >= dense_begin_ && id < dense_end_) || sparse_.count(id) != 0;
-  }
-
- private:
-  int64_t dense_begin_ = -1, dense_end_ = -1;  ///< every id in [begin, end) has been seen; -1: none yet
-  std::unordered_set<int64_t> sparse_;  ///< seen ids outside [begin, end)
-};
-
 /// check_trace_ray plus the duplicate-id rule, over a stream of rays.
 class TraceRayValidator {
  public:
@@ -42,10 +25,15 @@ class TraceRayValidator {
   int32_t triangle_count() const { return triangle_count_; }
   /// Checks `ray` and records its id; false (with `problem`) when it breaks a rule.
   bool check(const TraceRay& ray, TraceFieldProblem& problem);
+  /// Rays whose id could not be checked against every earlier id (it fell in
+  /// a merged range of the bounded id record, trace_id_set.h): a duplicate of
+  /// an id that far back is not seen. 0 whenever the ids come in few runs.
+  int64_t ids_not_checked() const { return ids_not_checked_; }
 
  private:
   int32_t triangle_count_ = -1;
   TraceIdSet ids_;
+  int64_t ids_not_checked_ = 0;
 };
 
 }  // namespace vbsim

@@ -8,6 +8,7 @@
 #include "bench/functional_bench.h"
 #include "commands.h"
 #include "io/atomic_output_file.h"
+#include "io/output_paths.h"
 #include "exit_codes.h"
 #include "provenance/provenance.h"
 #include "method_options.h"
@@ -25,6 +26,7 @@ struct BenchArgs {
   int repeats = 3;
   std::string json;
   std::string preset;  // cycle mode
+  bool quiet = false;
   MethodOptions method;
 };
 
@@ -35,6 +37,8 @@ void run_bench(const BenchArgs& a) {
   if (a.repeats <= 0) throw UsageError("option '--repeats': must be > 0");
   if (a.mode != "cycle" && !a.preset.empty()) throw UsageError("option '--preset' needs '--mode cycle'");
   check_preset_name(a.preset);
+  check_output_paths({{"option '--scene'", a.scene}, {"option '--config'", a.method.config}},
+                     {{"option '--json'", a.json}});
   const ReplayOptions opt = resolve_method_options(a.method);
   const Scene scene = load_scene(a.scene);
   BenchParams p;
@@ -49,8 +53,9 @@ void run_bench(const BenchArgs& a) {
     r = c.speed;
     j = r.to_json();
     j["hw"] = {{"config", hw::hw_config_json(cfg)}, {"cycles", c.cycles}, {"rays_per_cycle", c.rays_per_cycle}};
-    fmt::print("cycle-level model: {} preset, {} cycles, {:.4f} rays/cycle\n", cfg.preset, c.cycles,
-               c.rays_per_cycle);
+    if (!a.quiet)
+      fmt::print("cycle-level model: {} preset, {} cycles, {:.4f} rays/cycle\n", cfg.preset, c.cycles,
+                 c.rays_per_cycle);
   } else {
     r = run_functional_bench(scene, opt, p);
     j = r.to_json();
@@ -63,6 +68,7 @@ void run_bench(const BenchArgs& a) {
   j["config"] = replay_config_json(opt);
   j["provenance"] = provenance_json({a.scene, a.method.config});
   if (!a.json.empty()) write_output_file(a.json, j.dump(2) + "\n", "bench JSON");
+  if (a.quiet) return;
   fmt::print("vbsim bench ({}, {} rays, {} triangles, method {}, tester {}, best of {})\n", a.mode,
              r.rays, scene.size(), opt.method.name(), tester_name(opt.tester), a.repeats);
   fmt::print("  vbsim   {:>12.0f} rays/s   ({} hits)\n", r.vbsim_rays_per_s, r.vbsim_hits);
@@ -84,6 +90,7 @@ void add_bench_command(CLI::App& app) {
   cmd->add_option("--seed", args->seed, "random seed")->capture_default_str();
   cmd->add_option("--repeats", args->repeats, "timed repetitions; the best counts")->capture_default_str();
   cmd->add_option("--json", args->json, "write the results JSON here");
+  cmd->add_flag("--quiet,-q", args->quiet, "print nothing on success");
   add_method_options(*cmd, args->method, "none");
   cmd->callback([args] { run_bench(*args); });
 }

@@ -8,11 +8,13 @@
 
 #include "commands.h"
 #include "io/atomic_output_file.h"
+#include "io/output_paths.h"
 #include "exit_codes.h"
 #include "provenance/provenance.h"
 #include "fit/fit_report.h"
 #include "replay/replay_config.h"
 #include "score/score_run.h"
+#include "trace/trace_file.h"
 
 namespace vbsim::cli {
 
@@ -60,8 +62,18 @@ void run_fit_command(const FitArgs& a) {
     throw UsageError(e.what());
   }
 
+  const std::vector<ScoreFamily> families = collect_score_families(a.paths);
+  // Before any work: the JSON output may not overwrite a trace or its scene.
+  std::vector<NamedPath> read;
+  for (const ScoreFamily& fam : families)
+    for (const std::string& path : fam.traces) {
+      read.push_back({"trace", path});
+      read.push_back({"scene of " + path, open_trace(path)->header().scene_path});
+    }
+  check_output_paths(read, {{"option '--json'", a.json}});
+
   std::vector<FitTrace> traces;
-  for (const ScoreFamily& fam : collect_score_families(a.paths))
+  for (const ScoreFamily& fam : families)
     for (const std::string& path : fam.traces) traces.push_back(load_fit_trace(path));
   size_t scored = 0;
   for (const FitTrace& t : traces)

@@ -22,6 +22,7 @@ struct GenArgs {
   std::string scenario;
   int64_t rays = 200;
   uint64_t seed = 1;
+  bool seed_given = false;  // --seed on the command line
   std::vector<std::string> set;
   std::string out_dir;
   bool quiet = false;
@@ -53,6 +54,14 @@ void run_gen(const GenArgs& a) {
   } catch (const std::runtime_error& e) {  // a bad --set value, an unknown key, settings that cannot work
     throw UsageError(e.what());
   }
+  if (a.seed_given && !settings.seed_read() && !a.quiet)
+    fmt::print(stderr, "vbsim gen: warning: option '--seed {}' has no effect: {} with these settings is the same "
+                       "for every seed{}\n",
+               a.seed, a.scenario,
+               values.count("protocol") && values.at("protocol") == "pbrt-v4"
+                   ? " (protocol=pbrt-v4 takes pbrt-v4's trials RNG(first), RNG(first+1), ...: choose them with "
+                     "--set first=N)"
+                   : "");
   prepare_gen_directory(a.out_dir);
   std::filesystem::create_directories(a.out_dir);
 
@@ -93,7 +102,9 @@ void add_gen_command(CLI::App& app) {
              "in the directory; refuses trace files gen did not write)");
   cmd->add_option("scenario", args->scenario, help)->required();
   cmd->add_option("--rays", args->rays, "how many rays (for paths: camera paths)")->capture_default_str();
-  cmd->add_option("--seed", args->seed, "random seed")->capture_default_str();
+  cmd->add_option("--seed", args->seed, "random seed")->capture_default_str()->each([args](const std::string&) {
+    args->seed_given = true;
+  });
   cmd->add_option("--set", args->set, "scenario setting key=value (repeatable)");
   cmd->add_option("-o,--out", args->out_dir, "output directory")->required();
   cmd->add_flag("--quiet,-q", args->quiet, "print nothing on success");

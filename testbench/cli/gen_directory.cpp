@@ -8,6 +8,7 @@
 #include <set>
 
 #include "io/atomic_output_file.h"
+#include "io/json_document.h"
 
 namespace vbsim::cli {
 
@@ -18,9 +19,14 @@ namespace {
 /// The file names an earlier gen listed (empty without a readable list).
 std::set<std::string> owned_files(const fs::path& dir) {
   std::set<std::string> owned;
-  std::ifstream in(dir / kGenManifestName);
-  if (!in) return owned;
-  const nlohmann::json j = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
+  const fs::path manifest = dir / kGenManifestName;
+  if (!fs::is_regular_file(manifest)) return owned;
+  nlohmann::json j;
+  try {
+    j = read_json_document(manifest.string());
+  } catch (const JsonDocumentError&) {
+    return owned;  // not a list gen wrote: it owns nothing there
+  }
   if (j.is_object() && j.contains("files") && j["files"].is_array())
     for (const auto& f : j["files"])
       if (f.is_string() && fs::path(f.get<std::string>()).filename() == f.get<std::string>())

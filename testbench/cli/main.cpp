@@ -3,21 +3,41 @@
 // Exit codes are those of exit_codes.h; status and errors go to stderr, data
 // (tables, reports) to stdout.
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <CLI/CLI.hpp>
 #include <cstdlib>
 #include <exception>
+#include <new>
+#include <string>
+#include <vector>
 #include <systemc>
 
 #include "commands.h"
 #include "exit_codes.h"
+#include "io/atomic_output_file.h"
 #include "io/output_paths.h"
 #include "provenance/provenance.h"
+#include "standard_streams.h"
 #include "systemc_messages.h"
 
-int sc_main(int argc, char** argv) {
+namespace {
+
+/// An option or argument given as an empty string names nothing: an empty
+/// output path would otherwise be skipped silently, an empty input fail with
+/// a raw file-system message.
+void refuse_empty_values(const CLI::App& app) {
+  for (const CLI::App* sub : app.get_subcommands())
+    for (const CLI::Option* opt : sub->get_options())
+      for (const std::string& value : opt->results())
+        if (value.empty())
+          throw vbsim::cli::UsageError(opt->get_positional()
+                                           ? fmt::format("argument '{}': empty value", opt->get_name(true))
+                                           : fmt::format("option '{}': empty value", opt->get_name()));
+}
+
+int run_command_line(int argc, char** argv) {
   using namespace vbsim::cli;
-  vbsim::set_command_line(argc, argv);
   route_systemc_messages_to_stderr();
   CLI::App app{
       "vbsim: cycle-level simulator of a ray-tracing accelerator with validity-bit "
@@ -25,6 +45,7 @@ int sc_main(int argc, char** argv) {
   app.set_version_flag("--version", vbsim::vbsim_version_line(), "print the version and git revision");
   app.footer("Exit codes: 0 success, 1 runtime error, 2 usage error, 130 interrupted.");
   app.require_subcommand(0, 1);
+  app.parse_complete_callback([&app] { refuse_empty_values(app); });
   add_replay_command(app);
   add_convert_command(app);
   add_bench_command(app);
@@ -54,11 +75,33 @@ int sc_main(int argc, char** argv) {
   } catch (const vbsim::OutputPathError& e) {  // an output naming an input: refused before any work
     fmt::print(stderr, "vbsim: usage error: {}\n", e.what());
     return kExitUsage;
+  } catch (const std::bad_alloc&) {  // says nothing of its own: name the run and the inputs it was given
+    fmt::print(stderr, "vbsim: error: out of memory running '{}' (the inputs or settings above need more memory "
+                       "than this machine gives; docs/reliability.md, \"Bounded memory\")\n",
+               fmt::join(std::vector<std::string>(argv, argv + argc), " "));
+    return kExitRuntimeError;
   } catch (const std::exception& e) {
     fmt::print(stderr, "vbsim: error: {}\n", e.what());
     return kExitRuntimeError;
   }
   return kExitSuccess;
+}
+
+}  // namespace
+
+int sc_main(int argc, char** argv) {
+  using namespace vbsim::cli;
+  guard_standard_streams();
+  vbsim::exit_on_interrupt(kExitInterrupted);  // commands that stop cleanly install their own handler
+  vbsim::set_command_line(argc, argv);
+  const int code = run_command_line(argc, argv);
+  // Data on stdout is an output like any other: one that did not arrive fails the run.
+  const std::string stdout_error = standard_output_error();
+  if (!stdout_error.empty()) {
+    fmt::print(stderr, "vbsim: error: standard output: {}\n", stdout_error);
+    return code == kExitSuccess ? kExitRuntimeError : code;
+  }
+  return code;
 }
 
 // libsystemc.so brings a main() that calls sc_main(); this one (which the

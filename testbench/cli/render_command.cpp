@@ -3,12 +3,14 @@
 // whose shadow or bounce rays the method got wrong (model/render/renderer.h).
 #include <fmt/format.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <optional>
 
 #include "commands.h"
 #include "io/atomic_output_file.h"
+#include "io/output_paths.h"
 #include "exit_codes.h"
 #include "provenance/provenance.h"
 #include "method_options.h"
@@ -64,8 +66,13 @@ int run_render(const RenderArgs& a) {
     std::vector<float> v;
     if (!parse_float_list(a.camera, 6, v))
       throw UsageError(fmt::format("option '--camera': '{}' is not EX,EY,EZ,TX,TY,TZ (eye and target)", a.camera));
+    for (float x : v)
+      if (!(std::fabs(x) <= kMaxSceneCoordinate))
+        throw UsageError(fmt::format("option '--camera': {} is beyond the supported coordinate range of +-2^126", x));
     rs.camera.eye = Vec3f{v[0], v[1], v[2]};
     rs.camera.target = Vec3f{v[3], v[4], v[5]};
+    if (v[0] == v[3] && v[1] == v[4] && v[2] == v[5])
+      throw UsageError(fmt::format("option '--camera': eye and target coincide in '{}'", a.camera));
   }
   if (!(a.fov > 0.0f && a.fov < 180.0f))
     throw UsageError(fmt::format("option '--fov': {} is not in (0, 180) degrees", a.fov));
@@ -85,12 +92,20 @@ int run_render(const RenderArgs& a) {
     sb.scene = load_scene(a.scene);
     sb.bvh = build_bvh(sb.scene);
   }
+  check_output_paths({{"scene", a.scene}, {"option '--config'", a.method.config},
+                      {"scene of the trace", inputs.size() > 2 ? inputs[2] : std::string()}},
+                     {{"option '--out'", a.out}, {"option '--errors'", a.errors}, {"option '--stats'", a.stats}});
   if (!a.light.empty()) {
     std::string error;
     if (!parse_render_light(a.light, rs.light, error)) throw UsageError("option '--light': " + error);
   }
 
-  const RenderResult r = render_scene(sb.scene, sb.bvh, opt, rs);
+  RenderResult r;
+  try {
+    r = render_scene(sb.scene, sb.bvh, opt, rs);
+  } catch (const std::invalid_argument& e) {  // the camera or the exact judge refused a value: name the scene
+    throw std::runtime_error(fmt::format("render of '{}': {}", a.scene, e.what()));
+  }
   const nlohmann::json provenance = provenance_json(inputs);
   write_png_rgb(a.out, r.width, r.height, r.image, provenance.dump());
   if (!a.errors.empty()) write_png_rgb(a.errors, r.width, r.height, r.errors, provenance.dump());

@@ -5,14 +5,14 @@
 #include <fstream>
 #include <set>
 
+#include "io/json_document.h"
+
 namespace vbsim::cli {
 
 namespace {
 
 nlohmann::json read_table(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error(fmt::format("{}: cannot read score table", path));
-  nlohmann::json j = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
+  const nlohmann::json j = read_json_document(path);  // errors name the path and line
   if (!j.is_object() || !j.contains("families") || !j["families"].is_array() || !j.contains("rows") ||
       !j["rows"].is_array() || !j.contains("confidence"))
     throw std::runtime_error(fmt::format("{}: not a score table (vbsim score --out)", path));

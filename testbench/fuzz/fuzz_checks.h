@@ -7,6 +7,7 @@
 // (libFuzzer reports it as a crash, the suite as a failed test), and a broken
 // invariant calls fuzz_finding(), which aborts.
 #pragma once
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -123,7 +124,9 @@ inline void check_scene(const std::string& path) {
     const Scene scene = load_scene(path);
     if (scene.size() <= 0) fuzz_finding("a scene without triangles was accepted");
     for (const Triangle& t : scene.triangles)
-      if (!is_finite(t.v0) || !is_finite(t.v1) || !is_finite(t.v2)) fuzz_finding("a non-finite vertex");
+      for (const Vec3f& v : {t.v0, t.v1, t.v2})
+        for (int axis = 0; axis < 3; ++axis)
+          if (!(std::fabs(v[axis]) <= kMaxSceneCoordinate)) fuzz_finding("a vertex beyond the supported range");
     const Bvh bvh = build_bvh(scene);
     if (bvh.tris.size() != static_cast<size_t>(scene.size())) fuzz_finding("the BVH lost triangles");
   } catch (const SceneError&) {

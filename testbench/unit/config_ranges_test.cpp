@@ -67,10 +67,10 @@ TEST_CASE("config errors name the file they come from", "[config]") {
   ReplayOptions opt;
   CHECK_THROWS_WITH(load_replay_config(path, opt), Catch::StartsWith(path + ": field 'adaptive.int_scale'"));
   std::ofstream(path) << "{\"tmin_eps\": ";
-  CHECK_THROWS_WITH(load_replay_config(path, opt), Catch::StartsWith(path + ": not valid JSON"));
+  CHECK_THROWS_WITH(load_replay_config(path, opt), Catch::StartsWith(path + ": line 1: not valid JSON"));
   // A number beyond double is nlohmann-json's out_of_range, not a parse error (found by fuzzing).
   std::ofstream(path) << "{\"adaptive\": {\"float_scale\": 1.5e2263761063757594}}";
-  CHECK_THROWS_WITH(load_replay_config(path, opt), Catch::StartsWith(path + ": not valid JSON"));
+  CHECK_THROWS_WITH(load_replay_config(path, opt), Catch::StartsWith(path + ": line 1: not valid JSON"));
   std::filesystem::remove(path);
   CHECK_THROWS_WITH(load_replay_config(path, opt), Catch::StartsWith(path + ": cannot open"));
 }

@@ -43,8 +43,9 @@ std::vector<HostileCase> hostile_cases() {
        {tri({-1, -1, -1}, {-2, -2, -1}, {-3, -3, -1}), tri({-4, -4, -2}, {4, -4, -2}, {0, 4, -2})}},
       {"zero-area (one point)", {tri({-1, -2, -3}, {-1, -2, -3}, {-1, -2, -3}), tri({-4, -4, -5}, {4, -4, -5}, {0, 4, -5})}},
       {"needle", {tri({0, 0, 0}, {1, 0, 0}, {0.5f, 1e-7f, 0}), tri({-4, -4, -2}, {4, -4, -2}, {0, 4, -2})}},
+      // The second triangle spans nearly twice the largest supported coordinate (2^126).
       {"near 1e30", {tri({-1e30f, -1e30f, 1e30f}, {1e30f, -1e30f, 1e30f}, {0, 1e30f, 1e30f}),
-                     tri({-3e38f, -3e38f, -1e30f}, {3e38f, -3e38f, -1e30f}, {0, 3e38f, -1e30f})}},
+                     tri({-8e37f, -8e37f, -1e30f}, {8e37f, -8e37f, -1e30f}, {0, 8e37f, -1e30f})}},
       {"near 1e-30", {tri({-1e-30f, -1e-30f, 0}, {1e-30f, -1e-30f, 0}, {0, 1e-30f, 0}),
                       tri({-4, -4, -2}, {4, -4, -2}, {0, 4, -2})}},
       {"denormals", {tri({-den, -den, 0}, {den, -den, 0}, {0, den, 0}), tri({-4, -4, -2}, {4, -4, -2}, {0, 4, -2})}},
@@ -171,6 +172,9 @@ TEST_CASE("hostile geometry: non-finite and empty scenes are errors naming the f
   CHECK_THROWS_WITH(load_scene(path), Catch::Contains(path) && Catch::Contains("non-finite normal"));
   write_ply_scene(path, {});
   CHECK_THROWS_WITH(load_scene(path), Catch::Contains(path) && Catch::Contains("no triangles"));
+  // Beyond the supported coordinate range (2^126): refused with the vertex.
+  write_ply_scene(path, {Triangle{{3e38f, 0, 0}, {1, 0, 0}, {0, 1, 0}}});
+  CHECK_THROWS_WITH(load_scene(path), Catch::Contains(path) && Catch::Contains("beyond the supported coordinate range"));
   // A transform that overflows a finite vertex to inf.
   write_ply_scene(path, {Triangle{{3e38f, 0, 0}, {1, 0, 0}, {0, 1, 0}}});
   const std::array<float, 16> twice = {2, 0, 0, 0, 0, 2, 0, 0, 0, 0, 2, 0, 0, 0, 0, 1};

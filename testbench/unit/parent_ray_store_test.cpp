@@ -102,6 +102,31 @@ TEST_CASE("parent store: random sequences agree with the reference model", "[par
     const int64_t probe = ids_kind == 2 ? static_cast<int64_t>(rng() >> 1) : static_cast<int64_t>(rng() % (next + 8));
     if (ref.held.count(probe)) REQUIRE(store.lookup(probe)->o.x == ref.held[probe].o.x);
     else if (ref.ever.count(probe)) REQUIRE_THROWS_AS(store.lookup(probe), ParentWindowError);
-    else REQUIRE(store.lookup(probe) == nullptr);
+    else if (store.dropped_ids_exact()) REQUIRE(store.lookup(probe) == nullptr);
+    else {
+      // Ids in more ranges than the record keeps: a fresh id is either known
+      // fresh or refused as unknown, never taken for a dropped one.
+      std::string refusal;
+      const ParentRay* found = nullptr;
+      try {
+        found = store.lookup(probe);
+      } catch (const ParentWindowError& e) {
+        refusal = e.what();
+      }
+      REQUIRE(found == nullptr);
+      if (!refusal.empty()) REQUIRE_THAT(refusal, Catch::Contains("no longer known"));
+    }
   }
+}
+
+TEST_CASE("parent store: ids in order from an outlying first id keep the record exact", "[parents]") {
+  // One swapped id at the start made the old record of dropped ids grow with the trace.
+  ParentRayStore store(4);
+  store.add(1000000000, {}, {1, 0, 0});
+  for (int64_t id = 0; id < 300000; ++id) store.add(id, {}, {1, 0, 0});
+  CHECK(store.dropped_ids_exact());
+  CHECK_THROWS_WITH(store.lookup(1000000000), Catch::Contains("more than 4 rays before"));
+  CHECK_THROWS_AS(store.lookup(12345), ParentWindowError);
+  CHECK(store.lookup(300000) == nullptr);  // never added
+  CHECK(store.lookup(299999) != nullptr);
 }

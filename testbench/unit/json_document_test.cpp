@@ -1,0 +1,59 @@
+// io/json_document.h: every JSON document a user hands over is read with
+// bounded nesting and no repeated key, and refused with its file and line.
+#include <catch2/catch.hpp>
+
+#include <string>
+
+#include "io/json_document.h"
+
+using namespace vbsim;
+
+namespace {
+
+std::string nested(const std::string& open, const std::string& inner, const std::string& close, int depth) {
+  std::string s;
+  for (int i = 0; i < depth; ++i) s += open;
+  s += inner;
+  for (int i = 0; i < depth; ++i) s += close;
+  return s;
+}
+
+std::string refusal(const std::string& text) {
+  try {
+    parse_json_document(text, "c.json");
+  } catch (const JsonDocumentError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST_CASE("json document: nesting up to the limit is read, one level more is refused with its line", "[json]") {
+  // The outer object is one level: 63 arrays inside it reach the limit of 64.
+  CHECK(parse_json_document("{\"a\": " + nested("[", "1", "]", kMaxJsonDepth - 1) + "}", "c.json").is_object());
+  const std::string deep = "{\n\"a\": 1,\n\"b\": " + nested("[", "1", "]", kMaxJsonDepth) + "}";
+  CHECK(refusal(deep) == "c.json: line 3: JSON nested deeper than 64 levels of arrays and objects");
+  // Far deeper than any stack: refused before parsing, not a crash.
+  CHECK_THAT(refusal(nested("{\"k\":", "0", "}", 1000000)), Catch::StartsWith("c.json: line 1: JSON nested deeper"));
+}
+
+TEST_CASE("json document: brackets inside strings do not count as nesting", "[json]") {
+  const std::string text = "{\"s\": \"" + std::string(500, '[') + "\\\"" + std::string(500, '{') + "\"}";
+  CHECK(parse_json_document(text, "c.json")["s"].get<std::string>().size() == 1001);
+  CHECK(json_nesting_overflow("\"[[[[\"", 2) == std::string::npos);
+  CHECK(json_nesting_overflow("[[[", 2) == 2);
+}
+
+TEST_CASE("json document: a key twice in one object is refused with its path", "[json]") {
+  CHECK(refusal("{\"tmin_eps\": 1, \"tmin_eps\": 2}") == "c.json: field 'tmin_eps': appears twice");
+  CHECK(refusal("{\"hw\": {\"memory\": {\"l1\": {}, \"l1\": {}}}}") == "c.json: field 'hw.memory.l1': appears twice");
+  // The same key in different objects is fine, also in objects inside arrays.
+  CHECK(parse_json_document("{\"a\": {\"x\": 1}, \"b\": {\"x\": 2}, \"c\": [{\"x\": 1}, {\"x\": 2}]}", "c.json").size() == 3);
+}
+
+TEST_CASE("json document: malformed JSON and numbers beyond double name the line", "[json]") {
+  CHECK_THAT(refusal("{\n\"a\": 1,\n\"b\": }"), Catch::StartsWith("c.json: line 3: not valid JSON"));
+  CHECK_THAT(refusal("{\"a\": 1e999}"), Catch::StartsWith("c.json: line 1: not valid JSON"));
+  CHECK_THAT(refusal(""), Catch::StartsWith("c.json: line 1: not valid JSON"));
+}
