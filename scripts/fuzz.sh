@@ -3,7 +3,10 @@
 # in build-fuzz/ and runs each for a set time from its committed seed corpus
 # (testbench/fuzz/corpus/TARGET/), one after the other.
 #   scripts/fuzz.sh [--seconds N] [TARGET...]   (default: 120 s per target, every target)
-# Targets: text_trace binary_trace rtcore_rays config scene_ply scene_obj.
+# Targets: text_trace binary_trace rtcore_rays config scene_ply scene_obj. Every target but
+# rtcore_rays has a structure-aware mutator beside libFuzzer's byte mutations
+# (testbench/fuzz/structured_mutator.h): deep nesting, extreme numbers, lying counts and
+# header lengths, repeated keys.
 # New inputs go to a scratch corpus (build-fuzz/corpus/TARGET/), never into the
 # repository; crashes, timeouts and out-of-memory inputs are kept in
 # build-fuzz/findings/TARGET/ and named on stderr. Prints per target the
@@ -17,7 +20,7 @@ targets=()
 while (($#)); do
   case "$1" in
     --seconds) seconds="$2"; shift 2 ;;
-    -h|--help) sed -n '2,12p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,15p' "$0"; exit 0 ;;
     *) targets+=("$1"); shift ;;
   esac
 done

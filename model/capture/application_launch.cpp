@@ -61,6 +61,7 @@ LaunchResult run_under_shim(const std::vector<std::string>& command, const std::
     ::close(ready[0]);
     ::setenv("LD_PRELOAD", preload.c_str(), 1);
     ::setenv(kCaptureDirEnv, raw_dir.c_str(), 1);
+    ::signal(SIGPIPE, SIG_DFL);  // vbsim ignores SIGPIPE (an ignored signal stays ignored across exec)
     ::execvp(argv[0], argv.data());
     const int err = errno;
     (void)!::write(ready[1], &err, sizeof err);

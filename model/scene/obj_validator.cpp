@@ -15,9 +15,11 @@ constexpr size_t kMaxLineBytes = 1 << 16;
 
 bool is_digit(char c) { return c >= '0' && c <= '9'; }
 
-/// [+-]digits[.digits][(e|E)[+-]digits], or [+-].digits[...]: what every OBJ
-/// reader parses alike.
+/// [+-]digits[.digits][(e|E)[+-]digits], or +.digits / -.digits: what every
+/// OBJ reader parses alike. A bare leading point (".5") is not: assimp 5.2.5
+/// does not take it for a number and then fails on the line.
 bool is_decimal(std::string_view s) {
+  if (!s.empty() && s[0] == '.') return false;
   size_t i = 0;
   if (i < s.size() && (s[i] == '+' || s[i] == '-')) ++i;
   size_t digits = 0;
@@ -103,7 +105,9 @@ class ObjChecker {
  private:
   void numbers(const std::vector<std::string_view>& w) const {
     for (size_t k = 1; k < w.size(); ++k)
-      if (!is_decimal(w[k])) fail(fmt::format("'{}' is not a decimal number", w[k]));
+      if (!is_decimal(w[k]))
+        fail(fmt::format("'{}' is not a decimal number{}", w[k],
+                         w[k].substr(0, 1) == "." ? fmt::format(" assimp reads (write 0{})", w[k]) : ""));
   }
 
   /// One index: a non-zero integer within the `count` elements defined so far.

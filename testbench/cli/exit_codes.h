@@ -3,9 +3,9 @@
 //   1   runtime error: bad input file, unreadable or unwritable file, a failed check
 //   2   usage error: unknown command or option, a missing or malformed argument,
 //       an option value out of range (CLI11's parse errors map here too)
-//   130 interrupted (SIGINT): a replay stops, writes its statistics marked
-//       partial and exits 130; other commands die of the signal, which a shell
-//       also reports as 130
+//   130 interrupted (SIGINT or SIGTERM): a replay stops, writes its statistics
+//       marked partial and exits 130; other commands remove their unfinished
+//       outputs and exit 130 (io/atomic_output_file.h, exit_on_interrupt)
 // Commands throw UsageError for a bad command line and any other exception
 // for a runtime error; main() reports it once on stderr and picks the code.
 #pragma once

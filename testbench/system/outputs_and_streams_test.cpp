@@ -9,9 +9,6 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <chrono>
-#include <thread>
-
 #include "run_vbsim.h"
 
 using namespace vbsim::test;
@@ -117,14 +114,7 @@ TEST_CASE("SIGTERM ends any command with 130 and leaves no partial output", "[cl
       execl(VBSIM_BINARY, VBSIM_BINARY, command, big.c_str(), "-o", out.c_str(), "-q", static_cast<char*>(nullptr));
       _exit(127);
     }
-    // Wait until the output's temporary exists: the command is writing.
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
-    bool writing = false;
-    while (!writing && std::chrono::steady_clock::now() < deadline) {
-      std::this_thread::sleep_for(std::chrono::milliseconds(10));
-      for (const auto& e : std::filesystem::directory_iterator(dir))
-        if (e.path().filename().string().find(".partial-") != std::string::npos) writing = true;
-    }
+    const bool writing = wait_for_file(dir, ".partial-");  // the output's temporary: the command is writing
     kill(child, SIGTERM);
     int status = 0;
     waitpid(child, &status, 0);

@@ -8,8 +8,6 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <chrono>
-#include <thread>
 
 #include <nlohmann/json.hpp>
 
@@ -49,14 +47,7 @@ TEST_CASE("SIGTERM stops a replay and writes partial statistics", "[system][inte
           stats.c_str(), "--hits", hits.c_str(), static_cast<char*>(nullptr));
     _exit(127);
   }
-  // Wait until rays are being replayed: the hits file's temporary grows.
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
-  bool replaying = false;
-  while (!replaying && std::chrono::steady_clock::now() < deadline) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    for (const auto& e : std::filesystem::directory_iterator(dir))
-      if (e.path().filename().string().rfind("h.jsonl.partial-", 0) == 0 && e.file_size() > 100000) replaying = true;
-  }
+  const bool replaying = wait_for_file(dir, "h.jsonl.partial-", 100000);  // rays are being replayed
   kill(child, SIGTERM);
   int status = 0;
   waitpid(child, &status, 0);

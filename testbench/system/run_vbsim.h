@@ -5,10 +5,12 @@
 #include <unistd.h>
 
 #include <array>
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <thread>
 
 namespace vbsim::test {
 
@@ -65,6 +67,20 @@ inline std::string read_file(const std::filesystem::path& p) {
 }
 
 inline std::string source_dir() { return VBSIM_SOURCE_DIR; }
+
+/// Polls `dir` every 10 ms, for up to a minute, until it holds a file whose
+/// name contains `fragment` and that has more than `min_bytes` bytes (a
+/// running command's output temporary); false when none came.
+inline bool wait_for_file(const std::filesystem::path& dir, const std::string& fragment, std::uintmax_t min_bytes = 0) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    std::error_code ec;
+    for (const auto& e : std::filesystem::directory_iterator(dir, ec))
+      if (e.path().filename().string().find(fragment) != std::string::npos && e.file_size(ec) > min_bytes) return true;
+  }
+  return false;
+}
 
 /// Exit code, stdout and stderr of one run, kept apart.
 struct SplitRun {

@@ -84,6 +84,18 @@ TEST_CASE("OBJ loading: validated first, no material library opened", "[scene][o
   std::ofstream(dir / "bad.obj") << kTriangle << "f 1 2 3 4\n";
   CHECK_THROWS_WITH(load_scene((dir / "bad.obj").string()),
                     Catch::Contains("bad.obj") && Catch::Contains("line 4") && Catch::Contains("vertex index 4"));
+  // Every decimal form the validator passes, assimp reads to the same float32;
+  // a bare leading point, which assimp refuses, the validator refuses first.
+  const std::pair<const char*, float> forms[] = {{"-.5", -0.5f}, {"+.5", 0.5f}, {"+1", 1.0f},   {"5.", 5.0f},
+                                                 {"1.e2", 100.0f}, {"1E+2", 100.0f}, {"00.5", 0.5f}, {"-0.25", -0.25f}};
+  for (const auto& [text, value] : forms) {
+    INFO(text);
+    std::ofstream(dir / "d.obj", std::ios::trunc) << "v " << text << " 0 -1\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    CHECK(load_scene((dir / "d.obj").string()).triangles[0].v0.x == value);
+  }
+  std::ofstream(dir / "d.obj", std::ios::trunc) << "v .5 0 -1\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  CHECK_THROWS_WITH(load_scene((dir / "d.obj").string()),
+                    Catch::Contains("line 1") && Catch::Contains("'.5' is not a decimal number assimp reads (write 0.5)"));
   std::ofstream(dir / "s.stl") << "solid x\n";
   CHECK_THROWS_WITH(load_scene((dir / "s.stl").string()), Catch::Contains("unsupported format '.stl'"));
   std::filesystem::remove_all(dir);
