@@ -34,6 +34,8 @@ nlohmann::json traversal_json(const TraversalCounters& t, uint64_t rays) {
   return {{"node_visits", t.node_visits},
           {"box_tests", t.box_tests},
           {"triangle_tests", t.triangle_tests},
+          {"stack_pushes", t.stack_pushes},
+          {"stack_pops", t.stack_pops},
           {"node_visits_per_ray", ratio(t.node_visits, rays)},
           {"triangle_tests_per_ray", ratio(t.triangle_tests, rays)}};
 }
@@ -57,13 +59,13 @@ KindStats ReplayStats::total() const {
 }
 
 static nlohmann::json method_cost_json(const MethodCost& c) {
-  return {{"emission", c.emission}, {"candidate", c.candidate}, {"suspect", c.suspect}};
+  return {{"emission", c.emission}, {"result", c.result}, {"candidate", c.candidate}, {"suspect", c.suspect}};
 }
 
-/// The method's operations over the replay: emission once per ray, candidate and
-/// suspect costs times the counts measured (method_costs.h).
+/// The method's operations over the replay: emission and result once per ray,
+/// candidate and suspect costs times the counts measured (method_costs.h).
 static nlohmann::json method_ops_json(const nlohmann::json& cost, const KindStats& t) {
-  const uint64_t total = cost.value("emission", 0) * t.rays +
+  const uint64_t total = (cost.value("emission", 0) + cost.value("result", 0)) * t.rays +
                          cost.value("candidate", 0) * t.candidates.candidates +
                          cost.value("suspect", 0) * t.candidates.suspects;
   return {{"total", total}, {"per_ray", ratio(total, t.rays)}};
