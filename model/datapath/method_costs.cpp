@@ -4,25 +4,27 @@
 
 namespace vbsim {
 
-namespace {
-
 using namespace ops;
+
+namespace {
 
 /// The candidate's geometric normal: 2 edges (6 fadd) and a cross product.
 OpCounts triangle_normal() { return fadd(6) + cross(); }
 /// unit_on_side (origin_offsets.cpp): normalize, dot with d, compare, 3 selects (19).
 OpCounts unit_on_side() { return normalize() + dot() + fcmp(1) + fsel(3); }
 
-OpCounts emission_ops(const SelfIntersectionMethod& m) {
+}  // namespace
+
+OpCounts emission_ops_for(const SelfIntersectionMethod& m, bool child, bool shadow) {
   OpCounts c;
-  if (m.shading_position || m.shading_position_always) {
+  if (child && shadow && (m.shading_position || m.shading_position_always)) {
     // shading_position.cpp: per vertex normalize, p - v (3 fadd), dot, 3 fmul,
     // 3 fadd (24); the interpolation w = 1-u-v (2 fadd), 9 fmul + 6 fadd; the
     // convex-only test: 3 fadd, dot, compare, 3 selects (12).
     c += 3 * (normalize() + fadd(3) + dot() + fmul(3) + fadd(3)) + fadd(2) + fmul(9) + fadd(6);
     if (m.shading_position) c += fadd(3) + dot() + fcmp(1) + fsel(3);
   }
-  if (m.offset_errbound) {
+  if (child && m.offset_errbound) {
     // pbrt-v4 (pbrt_interaction.cpp; a step to the next float is a compare and
     // an integer step). The barycentrics are the renderer's own: recovering
     // them at replay is not the method's cost. A pbrt dot is fmul, 3 fma, fadd.
@@ -40,18 +42,27 @@ OpCounts emission_ops(const SelfIntersectionMethod& m) {
     c += fadd(3);                                    // p + offset
     c += 3 * (fcmp(2) + next_float);                 // rounding outward
   }
-  if (m.offset_adaptive) {
+  if (child && m.offset_adaptive) {
     // Listing 6-1: unit_on_side, then per component: fmul, float->int, sign
     // compare, negation select, integer add, abs, compare, fmul, fadd, select.
     c += unit_on_side() + 3 * (fmul(2) + cvt(1) + fcmp(2) + fsel(3) + iadd(1) + fadd(1));
   }
-  if (m.offset_normal) c += unit_on_side() + fmul(3) + fadd(3);     // p + eps * u
-  if (m.offset_direction) c += normalize() + fmul(3) + fadd(3);     // p + eps * unit(d)
-  if (m.tmin) c += dot() + fsqrt(1) + fdiv(1);                      // |d| = sqrt(dot), eps / |d|
-  if (m.reverse_shadow) c += fmul(3) + fadd(3) + fsel(3) + fsel(1); // o + t d, -d, sign flip
-  if (m.validity_bit) c += dot() + fcmp(1);                         // sign = dot(d, Ng) < 0
+  if (child && m.offset_normal) c += unit_on_side() + fmul(3) + fadd(3);     // p + eps * u
+  if (child && m.offset_direction) c += normalize() + fmul(3) + fadd(3);     // p + eps * unit(d)
+  if (m.tmin) c += dot() + fsqrt(1) + fdiv(1);                               // |d| = sqrt(dot), eps / |d|
+  if (shadow && m.reverse_shadow) c += fmul(3) + fadd(3) + fsel(3) + fsel(1); // o + t d, -d, sign flip
+  if (child && m.validity_bit) c += dot() + fcmp(1);                         // sign = dot(d, Ng) < 0
   return c;
 }
+
+OpCounts result_ops_for(const SelfIntersectionMethod& m, bool shadow) {
+  // reverse-shadow compares the parent's id with the closest hit once, when the
+  // answer is concluded (functional_replayer.cpp, conclude_ray): the shader
+  // that emitted the ray holds its parent, so the ray record carries no id.
+  return shadow && m.reverse_shadow ? iadd(1) : OpCounts{};
+}
+
+namespace {
 
 OpCounts suspect_ops(const AvoidanceConfig& a) {
   if (a.policy == AvoidancePolicy::SignOnly) return {};
@@ -73,13 +84,10 @@ OpCounts suspect_ops(const AvoidanceConfig& a) {
 
 MethodOps method_ops(const SelfIntersectionMethod& m) {
   MethodOps o;
-  o.emission = emission_ops(m);
+  o.emission = emission_ops_for(m, true, true);
+  o.result = result_ops_for(m, true);
   // primid compares each candidate's id with the parent's (candidate_filter.cpp).
   if (m.primid) o.candidate += iadd(1);
-  // reverse-shadow compares the parent's id with the closest hit once, when the
-  // answer is concluded (functional_replayer.cpp, conclude_ray): the shader
-  // that emitted the ray holds its parent, so the ray record carries no id.
-  if (m.reverse_shadow) o.result += iadd(1);
   if (m.validity_bit) {
     o.candidate += iadd(1);  // sign bit == front/back bit
     o.suspect = suspect_ops(m.avoidance);

@@ -30,8 +30,18 @@ struct MethodCost {
   int suspect = 0;    ///< operations per suspect (validity-bit epsilon tests)
 };
 
-/// The operations of `method` as configured (enabled tests, epsilon mode, policy).
+/// The operations of `method` as configured (enabled tests, epsilon mode, policy);
+/// `emission` and `result` are those of a ray every emission-time part acts on
+/// (a shadow ray with a parent surface).
 MethodOps method_ops(const SelfIntersectionMethod& method);
+/// The emission-time operations `method` performs on one ray, as the ray
+/// emission applies its parts (replay/ray_emission.cpp, and the ray source's
+/// count): `tmin` on every ray; the offsets, shading positions and the sign bit
+/// on rays with a parent surface (`child`), shading positions only on shadow
+/// ones; `reverse-shadow` on every shadow ray.
+OpCounts emission_ops_for(const SelfIntersectionMethod& method, bool child, bool shadow);
+/// The per-ray operations on the answer: reverse-shadow's id compare on shadow rays.
+OpCounts result_ops_for(const SelfIntersectionMethod& method, bool shadow);
 /// Their totals.
 MethodCost method_cost(const SelfIntersectionMethod& method);
 

@@ -7,14 +7,17 @@
 namespace vbsim {
 
 OperationEnergy operation_energy(const TechFile& t, const SelfIntersectionMethod& m, TesterKind tester,
-                                 const KindStats& k) {
+                                 const ReplayStats& stats) {
+  const KindStats k = stats.total();
   const MethodOps mo = method_ops(m);
   const double rays = static_cast<double>(k.rays);
   const TraversalCounters& tc = k.traversal;
   const double entry_bits_pj = kStackEntryBits * t.register_bit_pj;
   OperationEnergy e;
-  e.emission = rays * t.energy_pj(mo.emission);
-  e.result = rays * t.energy_pj(mo.result);
+  for (const RayCategory& c : ray_categories(stats)) {
+    e.emission += c.rays * t.energy_pj(emission_ops_for(m, c.child, c.shadow));
+    e.result += c.rays * t.energy_pj(result_ops_for(m, c.shadow));
+  }
   // Every search with a scene tests the root box: the box tests' count is at
   // least one per searched ray, and a search sets both units up once.
   e.box = tc.box_tests * t.energy_pj(box_test_ops()) + rays * t.energy_pj(box_setup_ops());

@@ -32,8 +32,10 @@ struct OperationEnergy {
   double method = 0;
 };
 
+/// The emission-time and result operations are those each ray's category
+/// receives (method_costs.h, emission_ops_for; replay_stats.h, ray_categories).
 OperationEnergy operation_energy(const TechFile& tech, const SelfIntersectionMethod& method, TesterKind tester,
-                                 const KindStats& counts);
+                                 const ReplayStats& stats);
 
 /// {"tech", "dynamic_pj": {...}, "dynamic_total_pj", "per_ray_pj", "method_per_ray_pj",
 ///  "mrays_per_j"} of the operations alone.

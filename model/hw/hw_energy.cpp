@@ -98,9 +98,9 @@ std::string hw_area_table(const TechFile& t, const HwArea& a) {
   return s;
 }
 
-nlohmann::json hw_energy_json(const TechFile& t, const HwConfig& cfg, const ReplayOptions& opt, const KindStats& k,
+nlohmann::json hw_energy_json(const TechFile& t, const HwConfig& cfg, const ReplayOptions& opt, const ReplayStats& stats,
                               const HwCounters& c, const nlohmann::json& memory) {
-  const OperationEnergy ops = operation_energy(t, opt.method, opt.tester, k);
+  const OperationEnergy ops = operation_energy(t, opt.method, opt.tester, stats);
   const HwArea area = hw_area(t, cfg, opt);
   // Memory: every L1 access reads a line, every miss writes one (a fill,
   // priced as an access); likewise the L2; DRAM per 64 bits moved; a stack

@@ -44,7 +44,7 @@ std::string hw_area_table(const TechFile& tech, const HwArea& a);
 /// of the chip's area over cycles / clock) energy, per ray, per unit instance,
 /// Mrays/J. `memory` is the hw section's memory.port (Accelerator::memory_stats).
 nlohmann::json hw_energy_json(const TechFile& tech, const HwConfig& cfg, const ReplayOptions& opt,
-                              const KindStats& counts, const HwCounters& counters, const nlohmann::json& memory);
+                              const ReplayStats& stats, const HwCounters& counters, const nlohmann::json& memory);
 /// Two lines for the terminal table.
 std::string hw_energy_lines(const nlohmann::json& energy, const nlohmann::json& area);
 

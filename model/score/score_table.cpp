@@ -15,14 +15,6 @@ constexpr Verdict kRated[] = {Verdict::Correct, Verdict::SelfHit, Verdict::False
 
 double ratio(uint64_t num, uint64_t den) { return den ? static_cast<double>(num) / den : 0.0; }
 
-/// The method's operations per ray (method_costs.h): emission and result per
-/// ray plus the candidate and suspect costs times the counts this run measured.
-double ops_per_ray(const nlohmann::json& cost, const KindStats& t) {
-  const double total = (cost.value("emission", 0.0) + cost.value("result", 0.0)) * t.rays +
-                       cost.value("candidate", 0.0) * t.candidates.candidates +
-                       cost.value("suspect", 0.0) * t.candidates.suspects;
-  return t.rays ? total / t.rays : 0.0;
-}
 
 nlohmann::json rate_json(uint64_t count, uint64_t of) {
   const Proportion p = wilson_interval(count, of);
@@ -81,8 +73,8 @@ nlohmann::json score_json(const std::vector<ScoreFamily>& families, const std::v
     nlohmann::json all = row_json(cell, "all", total);
     all["rays_per_s"] = cell.stats.wall_s > 0 ? total.rays / cell.stats.wall_s : 0.0;
     all["config"] = cell.config;
-    all["ops_per_ray"] = ops_per_ray(cell.config["cost_ops"], total);
-    const OperationEnergy e = operation_energy(t, cell.options.method, cell.tester, total);
+    all["ops_per_ray"] = ratio(method_ops_total(cell.config["cost_ops"], cell.stats), total.rays);
+    const OperationEnergy e = operation_energy(t, cell.options.method, cell.tester, cell.stats);
     all["energy"] = {{"tech", t.path},
                      {"per_ray_pj", per_ray(e.total(), total.rays)},
                      {"method_per_ray_pj", per_ray(e.method, total.rays)}};

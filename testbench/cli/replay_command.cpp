@@ -219,7 +219,7 @@ int run_replay_command(const ReplayArgs& a) {
     config["triangles"] = sb.scene.size();
     nlohmann::json j = stats.to_json(config);
     // The operations' energy in both modes; the cycle-level model adds memory and leakage in hw.energy.
-    j["energy"] = operation_energy_json(tech, operation_energy(tech, opt.method, opt.tester, stats.total()),
+    j["energy"] = operation_energy_json(tech, operation_energy(tech, opt.method, opt.tester, stats),
                                         stats.total().rays);
     if (!hw.is_null()) j["hw"] = std::move(hw);
     j["provenance"] = provenance;
@@ -233,7 +233,7 @@ int run_replay_command(const ReplayArgs& a) {
                opt.method.name(), tester_name(opt.tester), source->header().scene, sb.scene.size());
     fmt::print("{}{}", stats.summary(), table);
     if (a.mode != "cycle") {
-      const OperationEnergy e = operation_energy(tech, opt.method, opt.tester, stats.total());
+      const OperationEnergy e = operation_energy(tech, opt.method, opt.tester, stats);
       const uint64_t rays = stats.total().rays;
       fmt::print("energy (operations only, no memory): {:.4g} pJ/ray, the method {:.4g} pJ/ray ({})\n",
                  per_ray(e.total(), rays), per_ray(e.method, rays), tech.path);

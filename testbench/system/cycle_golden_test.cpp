@@ -77,9 +77,13 @@ void strip_unpinned(nlohmann::json& j) {
     j["hw"].erase("energy");
     j["hw"].erase("area");
   }
-  // Counts added after the files were pinned: the per-ray result operations
-  // and the traversal stack's pushes and pops (energy model, docs/energy.md).
-  if (j.contains("config") && j["config"].contains("cost_ops")) j["config"]["cost_ops"].erase("result");
+  // Counts added after the files were pinned: the per-ray result operations,
+  // the emission operations by ray category, and the traversal stack's pushes
+  // and pops (energy model, docs/energy.md).
+  if (j.contains("config") && j["config"].contains("cost_ops")) {
+    j["config"]["cost_ops"].erase("result");
+    j["config"]["cost_ops"].erase("by_ray");
+  }
   const auto strip_stack = [](nlohmann::json& t) {
     t.erase("stack_pushes");
     t.erase("stack_pops");

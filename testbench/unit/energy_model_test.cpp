@@ -34,28 +34,32 @@ SelfIntersectionMethod validity_bit() {
 }  // namespace
 
 TEST_CASE("energy: the operations of a replay, priced by hand", "[energy]") {
-  KindStats k;
+  ReplayStats s;
+  KindStats& k = s.by_kind[static_cast<int>(RayKind::Reflect)];  // two rays leaving a surface
   k.rays = 2;
+  k.children = 2;
+  KindStats& camera = s.by_kind[static_cast<int>(RayKind::Primary)];  // and a camera ray: no sign bit
+  camera.rays = 1;
   k.traversal.box_tests = 5;
   k.traversal.triangle_tests = 3;
   k.traversal.stack_pushes = 1;
   k.traversal.stack_pops = 1;
   k.candidates.candidates = 2;
   k.candidates.suspects = 1;
-  const OperationEnergy e = operation_energy(unit_tech(), validity_bit(), TesterKind::ThreeHalfPlane, k);
-  CHECK(e.emission == 2 * 6);             // the sign bit's dot and compare per ray
+  const OperationEnergy e = operation_energy(unit_tech(), validity_bit(), TesterKind::ThreeHalfPlane, s);
+  CHECK(e.emission == 2 * 6);             // the sign bit's dot and compare per child ray
   CHECK(e.result == 0);
-  CHECK(e.box == 5 * 20 + 2 * 15);        // box tests, per-ray set-ups
-  CHECK(e.triangle == 3 * 63 + 2 * 9);    // triangle tests, per-ray set-ups
+  CHECK(e.box == 5 * 20 + 3 * 15);        // box tests, per-ray set-ups
+  CHECK(e.triangle == 3 * 63 + 3 * 9);    // triangle tests, per-ray set-ups
   CHECK(e.candidate_filter == 2 * 1);     // the sign compare
   CHECK(e.avoidance == 1 * 64);           // the default tests of one suspect
   CHECK(e.stack == (3 + 48) + (5 + 48));  // push, pop: operations and 96 bits at 0.5 pJ
-  CHECK(e.ray_records == 2 * 260 * 0.5);  // each ray's 260-bit record written once
-  CHECK(e.total() == 12 + 130 + 207 + 2 + 64 + 104 + 260);
-  CHECK(e.method == 12 + 2 + 64 + 2 * 1 * 0.5);  // with the one extra record bit
-  const nlohmann::json j = operation_energy_json(unit_tech(), e, 2);
-  CHECK(j["per_ray_pj"].get<double>() == e.total() / 2);
-  CHECK(j["mrays_per_j"].get<double>() == Approx(2 / (e.total() * 1e-12) / 1e6));
+  CHECK(e.ray_records == 3 * 260 * 0.5);  // each ray's 260-bit record written once
+  CHECK(e.total() == 12 + 145 + 216 + 2 + 64 + 104 + 390);
+  CHECK(e.method == 12 + 2 + 64 + 3 * 1 * 0.5);  // with the one extra record bit
+  const nlohmann::json j = operation_energy_json(unit_tech(), e, 3);
+  CHECK(j["per_ray_pj"].get<double>() == e.total() / 3);
+  CHECK(j["mrays_per_j"].get<double>() == Approx(3 / (e.total() * 1e-12) / 1e6));
 }
 
 TEST_CASE("energy: unit areas from their operators, shared over the issue interval", "[energy]") {
@@ -95,8 +99,8 @@ TEST_CASE("energy: memory, leakage and per-instance energy of a cycle-level run,
   cfg.memory.l1 = {1024, 4, 64, 2, 8};
   cfg.memory.l2 = {4096, 8, 64, 14, 32};
   ReplayOptions opt;  // method none, three-half-plane
-  KindStats k;
-  k.rays = 1;
+  ReplayStats s;
+  s.by_kind[static_cast<int>(RayKind::Primary)].rays = 1;
   hw::HwCounters c;
   c.rays = 1;
   c.cycles = 1000;  // 1 microsecond
@@ -105,7 +109,7 @@ TEST_CASE("energy: memory, leakage and per-instance energy of a cycle-level run,
                                  {"l2", {{"accesses", 1}, {"misses", 1}}},
                                  {"dram", {{"bytes", 64}}}};
   const TechFile t = unit_tech();
-  const nlohmann::json e = hw::hw_energy_json(t, cfg, opt, k, c, memory);
+  const nlohmann::json e = hw::hw_energy_json(t, cfg, opt, s, c, memory);
   // L1 (1 KiB, 4 pJ per 64 bits): 4 line accesses x 8 words; L2 (4 KiB, 16 pJ): 2 x 8.
   CHECK(e["dynamic_pj"]["l1"].get<double>() == 4 * 8 * 4);
   CHECK(e["dynamic_pj"]["l2"].get<double>() == 2 * 8 * 16);

@@ -42,6 +42,23 @@ TEST_CASE("method costs: emission-time methods, counted by hand", "[method_costs
   CHECK(method_cost(parsed("shading-position-always")).emission == 89);
 }
 
+TEST_CASE("method costs: each emission-time part acts on the rays ray emission gives it", "[method_costs]") {
+  // ray_emission.cpp: tmin on every ray; offsets and the sign bit on rays with a
+  // parent surface; shading positions on shadow rays with one; reverse-shadow on
+  // every shadow ray.
+  const SelfIntersectionMethod eb = parsed("offset-errbound+tmin");
+  CHECK(emission_ops_for(eb, false, false).total() == 7);
+  CHECK(emission_ops_for(eb, true, false).total() == 128 + 7);
+  CHECK(emission_ops_for(parsed("validity-bit"), false, false).total() == 0);
+  CHECK(emission_ops_for(parsed("validity-bit"), true, true).total() == 6);
+  CHECK(emission_ops_for(parsed("shading-position"), true, false).total() == 0);
+  CHECK(emission_ops_for(parsed("shading-position"), true, true).total() == 101);
+  CHECK(emission_ops_for(parsed("reverse-shadow"), false, true).total() == 10);
+  CHECK(emission_ops_for(parsed("reverse-shadow"), true, false).total() == 0);
+  CHECK(result_ops_for(parsed("reverse-shadow"), true).total() == 1);
+  CHECK(result_ops_for(parsed("reverse-shadow"), false).total() == 0);
+}
+
 TEST_CASE("method costs: reverse-shadow compares the parent id once per ray, not per candidate", "[method_costs]") {
   // conclude_ray compares the closest hit with the parent triangle once; the
   // id stays with the shader that emitted the ray, so the record is 259 bits.
