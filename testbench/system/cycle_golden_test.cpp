@@ -65,7 +65,7 @@ void strip_unpinned(nlohmann::json& j) {
       hw["memory"].erase("at_lookahead_cycles");
       hw["memory"].erase("l2_lookups_in_time_order");
       for (const char* f : {"rays_per_cycle", "window", "dependencies", "missing_parents", "bundles", "bundle_cycles",
-                            "bundle_max"})
+                            "bundle_max", "emission_width", "emission_depth"})
         hw["source"].erase(f);
       hw.erase("shader");
     }
