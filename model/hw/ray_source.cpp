@@ -94,6 +94,8 @@ nlohmann::json RaySource::parameters() const {
           {"issue_interval", config_.issue_interval},
           {"sign_bit_cycles", config_.sign_bit_cycles},
           {"emission_op_cycles", config_.emission_op_cycles},
+          {"emission_width", config_.emission_width},
+          {"emission_depth", config_.emission_depth},
           {"bundles", config_.bundles},
           {"method", replayer_.options().method.name()}};
 }
