@@ -17,22 +17,14 @@ import json
 import os
 import sys
 
+from pbrt_protocol import per_million  # noqa: E402  (scripts/ is the script's own directory)
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 # Rows shown per family: every method with the patent's tester, and the
 # configurations whose point is another tester.
 MAIN_TESTER = "three-half-plane"
 OTHER = {("offset-errbound", "pbrt-watertight"), ("validity-bit:vb-policy=vote", "pbrt-watertight"),
          ("validity-bit", "pbrt-watertight")}
-
-
-def per_million(x):
-    if x == 0:
-        return "0"
-    if x >= 99.5:
-        return f"{x:.0f}"
-    if x >= 0.995:
-        return f"{x:.1f}"
-    return f"{x:.2g}"
 
 
 def rows_by_family(score):

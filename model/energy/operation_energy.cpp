@@ -32,18 +32,21 @@ OperationEnergy operation_energy(const TechFile& t, const SelfIntersectionMethod
   return e;
 }
 
+nlohmann::json operation_parts_json(const OperationEnergy& e) {
+  return {{"emission", e.emission},
+          {"result", e.result},
+          {"box", e.box},
+          {"triangle", e.triangle},
+          {"candidate_filter", e.candidate_filter},
+          {"avoidance", e.avoidance},
+          {"stack", e.stack},
+          {"ray_records", e.ray_records}};
+}
+
 nlohmann::json operation_energy_json(const TechFile& t, const OperationEnergy& e, uint64_t rays) {
   return {{"tech", t.path},
           {"scope", "operations only (functional mode: no memory, no leakage)"},
-          {"dynamic_pj",
-           {{"emission", e.emission},
-            {"result", e.result},
-            {"box", e.box},
-            {"triangle", e.triangle},
-            {"candidate_filter", e.candidate_filter},
-            {"avoidance", e.avoidance},
-            {"stack", e.stack},
-            {"ray_records", e.ray_records}}},
+          {"dynamic_pj", operation_parts_json(e)},
           {"dynamic_total_pj", e.total()},
           {"per_ray_pj", per_ray(e.total(), rays)},
           {"method_pj", e.method},

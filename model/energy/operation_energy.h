@@ -37,6 +37,9 @@ struct OperationEnergy {
 OperationEnergy operation_energy(const TechFile& tech, const SelfIntersectionMethod& method, TesterKind tester,
                                  const ReplayStats& stats);
 
+/// The parts of `e` by name, pJ: {"emission", "result", "box", ...}.
+nlohmann::json operation_parts_json(const OperationEnergy& e);
+
 /// {"tech", "dynamic_pj": {...}, "dynamic_total_pj", "per_ray_pj", "method_per_ray_pj",
 ///  "mrays_per_j"} of the operations alone.
 nlohmann::json operation_energy_json(const TechFile& tech, const OperationEnergy& e, uint64_t rays);

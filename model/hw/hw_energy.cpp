@@ -133,18 +133,11 @@ nlohmann::json hw_energy_json(const TechFile& t, const HwConfig& cfg, const Repl
   j["tech"] = t.path;
   j["memory_model"] = cfg.memory.ideal ? "ideal memory: not priced" : "SRAM per 64-bit access, DRAM per 64 bits";
   if (extrapolated) j["sram_size_extrapolated"] = true;
-  j["dynamic_pj"] = {{"emission", ops.emission},
-                     {"result", ops.result},
-                     {"box", ops.box},
-                     {"triangle", ops.triangle},
-                     {"candidate_filter", ops.candidate_filter},
-                     {"avoidance", ops.avoidance},
-                     {"stack", ops.stack},
-                     {"ray_records", ops.ray_records},
-                     {"l1", l1},
-                     {"l2", l2},
-                     {"dram", dram},
-                     {"stack_spills", spills}};
+  j["dynamic_pj"] = operation_parts_json(ops);
+  j["dynamic_pj"]["l1"] = l1;
+  j["dynamic_pj"]["l2"] = l2;
+  j["dynamic_pj"]["dram"] = dram;
+  j["dynamic_pj"]["stack_spills"] = spills;
   j["dynamic_total_pj"] = dynamic;
   j["static_pj"] = stat;
   j["total_pj"] = total;
