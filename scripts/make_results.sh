@@ -14,6 +14,8 @@
 #     same scenario families (scripts/arch_sweep.py);
 #  4. pareto.md and pareto-*.png: speed against accuracy, drawn from the one
 #     table of step 1 (scripts/pareto.py);
+#     energy.md: energy against accuracy for the families and a captured
+#     pathtracer trace (scripts/energy_page.py, docs/energy.md);
 #  5. stability.md, sweep-*.png, sweeps.csv: stability sweeps (scripts/sweep.py);
 #  6. montage.png: every method rendered on the failure scenes
 #     (scripts/make_montage.py).
@@ -101,6 +103,16 @@ echo "make_results.sh: wrote docs/results/accuracy.md and $out/accuracy.json" >&
 /usr/bin/python3 scripts/arch_sweep.py --vbsim "$vbsim" --families "${dirs[@]}" --out docs/results \
   --results "$out" ${backend[@]+"${backend[@]}"}
 /usr/bin/python3 scripts/pareto.py --score "$out/accuracy.json" --out docs/results
+# A captured trace of embree-tools' pathtracer on the bunny (docs/capture.md), scored
+# for the energy page next to the families.
+rm -rf "$out/captured"
+"$vbsim" capture --strip-offsets -o "$out/captured/raw" -- pathtracer -i traces/bunny/bunny.obj --size 160 120 \
+  --spp 1 --ambientlight 0.3 0.3 0.3 --pointlight 10 20 20 300 300 300 -o "$out/captured/raw/image.ppm" \
+  --threads 1 --vp 0 5 25 --vi 0 4.8 0 --fov 30 > /dev/null
+mkdir -p "$out/captured/pathtracer"
+"$vbsim" oracle -q "$out/captured/raw/trace.jsonl" -o "$out/captured/pathtracer/trace.jsonl"
+"$vbsim" score -q "$out/captured/pathtracer" --testers "$testers" --out "$out/pathtracer.json" > /dev/null
+/usr/bin/python3 scripts/energy_page.py --score "$out/accuracy.json" --score "$out/pathtracer.json" --out docs/results
 /usr/bin/python3 scripts/sweep.py --vbsim "$vbsim" --work "$out/sweeps" --out docs/results ${backend[@]+"${backend[@]}"}
 /usr/bin/python3 scripts/make_montage.py
 echo "make_results.sh: every result in docs/results/ regenerated" >&2

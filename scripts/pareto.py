@@ -10,9 +10,13 @@ Input: the JSON table of `vbsim score --out` (rows per family, method, tester
 and ray kind), the one table that holds both the error rates and, from
 `vbsim score --mode cycle`, the cycle-level costs of the same traces. Cost
 axes, lower is better on each:
-  - operations per ray: emission + candidate x candidates/ray + suspect x
+  - operations per ray: each ray's emission operations (those of the parts
+    that act on its kind of ray) + candidate x candidates/ray + suspect x
     suspects/ray, the counts of model/datapath/method_costs.cpp with the
-    candidates and suspects measured in the run;
+    candidates and suspects measured in the run (the row's `ops_per_ray`);
+  - the method's own energy per ray (pJ; the row's `energy.method_per_ray_pj`,
+    priced by the technology file: docs/energy.md), present in tables made
+    since the energy model;
   - bits per ray in flight (the ray record the hardware holds);
   - functional replay time per ray (microseconds; from rays per second; it
     includes the exact verdicts, which cost more for wrong answers);
@@ -38,6 +42,8 @@ ERROR_KINDS = ("self_hit", "false_hit", "missed")
 
 def ops_per_ray(row):
     """The method's operations per ray (method_costs.h) from a `vbsim score` row."""
+    if "ops_per_ray" in row:
+        return row["ops_per_ray"]
     cost, av, rays = row["config"]["cost_ops"], row["avoidance"], row["rays"]
     total = cost["emission"] * rays + cost["candidate"] * av["candidates"] + cost["suspect"] * av["suspects"]
     return total / rays if rays else 0.0
@@ -66,6 +72,8 @@ def points_of(rows, family, tester):
              "us": 1e6 / r["rays_per_s"] if r.get("rays_per_s") else float("nan")}
         if "cycle" in r:
             p["cycles"] = r["cycle"]["cycles_per_ray"]
+        if "energy" in r:
+            p["pj"] = r["energy"]["method_per_ray_pj"]
         out.append(p)
     return out
 
@@ -81,7 +89,8 @@ def pareto_front(points, cost):
     return sorted(front, key=lambda p: p[cost])
 
 
-AXES = [("ops", "operations per ray (method only)"), ("bits", "bits per ray in flight"),
+AXES = [("ops", "operations per ray (method only)"), ("pj", "energy per ray, pJ (method only)"),
+        ("bits", "bits per ray in flight"),
         ("us", "functional replay, microseconds per ray"), ("cycles", "cycles per ray, cycle-level model")]
 
 
@@ -140,7 +149,9 @@ def main():
              f"Tester: {args.tester}. Error rate: (self_hit + false_hit + missed) per scored secondary "
              "ray (every ray that leaves a surface). Costs, lower is better: operations per ray of the "
              "method itself (`docs/methods.md`, with the candidates and suspects each scenario really "
-             "produces), bits per ray in flight, functional replay time per ray, and the cycle-level "
+             "produces), the method's own energy per ray (`docs/energy.md`: its operations and extra "
+             "record bits priced by the technology file), bits per ray in flight, functional replay "
+             "time per ray, and the cycle-level "
              f"model's cycles per ray ({', '.join(presets) or 'not measured'} preset), all from the one "
              f"table `{score['command']}` wrote. The Pareto front holds the methods that no other method "
              "beats on both the cost and the error rate.", ""]

@@ -41,6 +41,8 @@ CycleBenchResult run_cycle_bench(const Scene& scene, const ReplayOptions& opt, c
     res.box_tests_per_ray = static_cast<double>(total.traversal.box_tests) / p.rays;
     res.triangle_tests_per_ray = static_cast<double>(total.traversal.triangle_tests) / p.rays;
     out.cycles = run.counters.cycles;
+    out.energy = run.hw["energy"];
+    out.area = run.hw["area"];
     out.rays_per_cycle = run.counters.cycles ? static_cast<double>(run.counters.rays) / run.counters.cycles : 0;
     best_embree = std::min(best_embree, time_embree(embree, rays, theirs));
   }

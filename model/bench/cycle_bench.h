@@ -3,6 +3,8 @@
 // A benchmark, not a test.
 #pragma once
 #include "bench/functional_bench.h"
+#include <nlohmann/json.hpp>
+
 #include "hw/hw_config.h"
 
 namespace vbsim {
@@ -11,6 +13,7 @@ struct CycleBenchResult {
   BenchResult speed;        ///< vbsim_* are the cycle-level replay's figures
   uint64_t cycles = 0;      ///< simulated cycles of the last repetition
   double rays_per_cycle = 0;
+  nlohmann::json energy, area;  ///< hw.energy and hw.area of the last repetition (docs/energy.md)
 };
 
 CycleBenchResult run_cycle_bench(const Scene& scene, const ReplayOptions& opt, const hw::HwConfig& cfg,

@@ -99,6 +99,7 @@ class BvhStepper {
     stack_[sp_] = {far.index, far.count, entry[first ^ 1u]};
     const unsigned full = onchip_ == onchip_depth_ ? 1u : 0u;
     sp_ += static_cast<int>(both);
+    tc_->stack_pushes += both;
     spills_ += both & full;                        // the oldest on-chip entry goes to memory
     onchip_ += static_cast<int>(both & (full ^ 1u));
     return visit(near);
@@ -181,6 +182,7 @@ class BvhStepper {
       }
       --sp_;
       --onchip_;
+      ++tc_->stack_pops;
       if (stack_[sp_].t > tmax_) continue;
       return visit(BvhRef{stack_[sp_].index, stack_[sp_].count});
     }

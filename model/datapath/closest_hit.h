@@ -22,10 +22,14 @@ struct TraversalCounters {
   uint64_t node_visits = 0;     ///< BvhNode fetches: one per interior node visited
   uint64_t box_tests = 0;       ///< the root's box, then both child boxes of every node fetched
   uint64_t triangle_tests = 0;  ///< triangles handed to the tester
+  uint64_t stack_pushes = 0;    ///< farther children pushed (both children met)
+  uint64_t stack_pops = 0;      ///< entries popped (the search ends with the rest unpopped)
   void add(const TraversalCounters& o) {
     node_visits += o.node_visits;
     box_tests += o.box_tests;
     triangle_tests += o.triangle_tests;
+    stack_pushes += o.stack_pushes;
+    stack_pops += o.stack_pops;
   }
 };
 
@@ -59,11 +63,13 @@ Hit closest_hit(const Bvh& bvh, const Ray& ray, const CandidateFilter& filter,
   } stack[kTraversalStackDepth];
   int sp = 0;
   // Counted locally and added once: the search's inner loop stays in registers.
-  uint64_t node_visits = 0, triangle_tests = 0;
+  uint64_t node_visits = 0, triangle_tests = 0, pushes = 0;
   const auto finish = [&] {
     tc.node_visits += node_visits;
     tc.box_tests += 1 + 2 * node_visits;  // the root's box, then two per fetch
     tc.triangle_tests += triangle_tests;
+    tc.stack_pushes += pushes;
+    tc.stack_pops += pushes - static_cast<uint64_t>(sp);  // what is left was never popped
     return best;
   };
   if (!box.hits(bvh.root_bounds, tmax)) return finish();
@@ -88,6 +94,7 @@ Hit closest_hit(const Bvh& bvh, const Ray& ray, const CandidateFilter& filter,
         stack[sp].count = far.count;
         stack[sp].t = first0 ? t1 : t0;
         sp += hit == 3u;
+        pushes += hit == 3u;
         ref = first0 ? c0 : c1;
         continue;
       }

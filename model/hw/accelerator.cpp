@@ -298,6 +298,7 @@ HwCounters Accelerator::chip_counters() const {
   c.source_busy_cycles = src.busy_cycles;
   c.sign_bits_computed = src.sign_bits_computed;
   c.emission_ops = src.emission_ops;
+  c.emission_unit_ops = src.emission_unit_ops;
   return c;
 }
 

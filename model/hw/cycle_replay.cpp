@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "hw/accelerator.h"
+#include "hw/hw_energy.h"
 #include "hw/simulation_context.h"
 #include "hw/timeline_recorder.h"
 #include "hw/vcd_recorder.h"
@@ -52,6 +53,11 @@ CycleRunResult run_cycle_replay(const RayFeed& feed, const Scene& scene, const B
   r.counters = acc->chip_counters();
   r.hw = acc->hw_json();
   r.table = acc->hw_table();
+  // Energy and area, from the counters the run kept (nothing per cycle).
+  const TechFile tech = options.tech ? *options.tech : load_tech_file(default_tech_path());
+  r.hw["energy"] = hw_energy_json(tech, cfg, opt, r.stats, r.counters, r.hw["memory"]["port"]);
+  r.hw["area"] = hw_area_json(tech, hw_area(tech, cfg, opt));
+  r.table += hw_energy_lines(r.hw["energy"], r.hw["area"]);
   if (vcd) vcd->write(options.vcd.path);
   if (timeline) timeline->write(options.timeline.path);
   return r;

@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "energy/tech_file.h"
 #include "hw/accelerator_units.h"
 #include "hw/cycle_engine.h"
 #include "hw/hw_config.h"
@@ -40,6 +41,8 @@ struct CycleRunOptions {
   RayLocator locator;         ///< names a ray's line in errors the model finds (may be empty)
   RayTimesSink ray_times;     ///< every finished ray's cycles (may be empty)
   AcceleratorUnits units;     ///< replaced units (none by default)
+  /// Prices hw.energy and hw.area (null: the shipped default, default_tech_path()).
+  const TechFile* tech = nullptr;
 };
 
 struct CycleRunResult {

@@ -131,6 +131,8 @@ void apply_hw_config(const nlohmann::json& j, const std::string& file, HwConfig&
     fs.integer("issue_interval", cfg.source.issue_interval, 1, 100000);
     fs.integer("sign_bit_cycles", cfg.source.sign_bit_cycles, 0, 100000);
     fs.integer("emission_op_cycles", cfg.source.emission_op_cycles, 0, 100000);
+    fs.integer("emission_width", cfg.source.emission_width, 0, 1024);
+    fs.integer("emission_depth", cfg.source.emission_depth, 0, 100000);
     fs.integer("rays_per_cycle", cfg.source.rays_per_cycle, 1, 64);
     fs.integer("window", cfg.source.window, 0, 1u << 20);
     fs.boolean("dependencies", cfg.source.dependencies);
@@ -198,6 +200,8 @@ nlohmann::json hw_config_json(const HwConfig& c) {
            {{"issue_interval", c.source.issue_interval},
             {"sign_bit_cycles", c.source.sign_bit_cycles},
             {"emission_op_cycles", c.source.emission_op_cycles},
+            {"emission_width", c.source.emission_width},
+            {"emission_depth", c.source.emission_depth},
             {"rays_per_cycle", c.source.rays_per_cycle},
             {"window", c.source.window},
             {"dependencies", c.source.dependencies},

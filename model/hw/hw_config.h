@@ -29,7 +29,13 @@ const char* missing_parents_name(MissingParents m);
 struct SourceConfig {
   uint32_t issue_interval = 1;      ///< cycles one emission lane takes per ray, at least
   uint32_t sign_bit_cycles = 1;     ///< extra cycles when the trace omits a child's sign bit
-  uint32_t emission_op_cycles = 4;  ///< extra cycles per emission-time method acting on a ray
+  uint32_t emission_op_cycles = 4;  ///< extra cycles per emission-time method acting on a ray (no emission unit)
+  /// The emission unit (0: none, emission_op_cycles per method): operations it
+  /// starts per cycle on a lane's ray; a ray's n emission-time operations
+  /// (method_costs.h, emission_ops_for, the sign bit aside) hold its lane
+  /// ceil(n / emission_width) + emission_depth cycles instead.
+  uint32_t emission_width = 0;
+  uint32_t emission_depth = 0;  ///< the emission unit's pipeline depth, cycles
   uint32_t rays_per_cycle = 1;      ///< emission lanes: rays that may start emission in one cycle
   /// Rays the ray-emission buffer looks ahead beyond the oldest unfinished one.
   uint32_t window = 4096;

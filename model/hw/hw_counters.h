@@ -48,6 +48,7 @@ struct SourceCounters {
   uint64_t busy_cycles = 0;         ///< cycles spent emitting (interval, sign bits, emission ops)
   uint64_t sign_bits_computed = 0;  ///< rays whose sign bit the source computed
   uint64_t emission_ops = 0;        ///< emission-time method operations charged
+  uint64_t emission_unit_ops = 0;   ///< arithmetic operations through the emission unit (0 without one)
   uint64_t no_free_slot_cycles = 0; ///< cycles a ready ray waited because no slot was free
 };
 
@@ -74,6 +75,7 @@ struct HwCounters {
   uint64_t source_busy_cycles = 0;  ///< cycles the source spent emitting (interval, sign bits, emission ops)
   uint64_t sign_bits_computed = 0;  ///< rays whose sign bit the source computed
   uint64_t emission_ops = 0;        ///< emission-time method operations charged
+  uint64_t emission_unit_ops = 0;   ///< arithmetic operations through the emission unit (0 without one)
   uint64_t slot_cycles = 0;         ///< sum over rays of cycles in a slot (dispatch to result)
   std::vector<uint64_t> latency_histogram;  ///< rays per latency bucket (the last one open-ended)
   uint64_t latency_min = 0, latency_max = 0;

@@ -86,7 +86,12 @@ nlohmann::json hw_stats_json(const HwReport& r) {
   j["source"] = {{"busy_cycles", c.source_busy_cycles},
                  {"sign_bits_computed", c.sign_bits_computed},
                  {"emission_ops", c.emission_ops},
-                 {"emission_op_cycles", c.emission_ops * cfg.source.emission_op_cycles}};
+                 {"emission_op_cycles",
+                  cfg.source.emission_width ? 0 : c.emission_ops * cfg.source.emission_op_cycles}};
+  if (cfg.source.emission_width)
+    j["source"]["emission_unit"] = {{"width", cfg.source.emission_width},
+                                    {"depth", cfg.source.emission_depth},
+                                    {"ops", c.emission_unit_ops}};
   j["latency"] = {{"min", c.latency_min},
                   {"mean", per(c.slot_cycles, c.rays)},
                   {"max", c.latency_max},

@@ -7,6 +7,8 @@
 
 #include <fmt/format.h>
 
+#include "datapath/method_costs.h"
+
 namespace vbsim::hw {
 
 namespace {
@@ -41,6 +43,13 @@ RaySource::RaySource(sc_core::sc_module_name name, const HwConfig& config, Funct
       independent_missing_(config.source.missing_parents == MissingParents::Independent), lanes_(lanes_count_),
       ready_(window_ + 1) {
   ring_.reserve(std::min<uint32_t>(capacity_, 4096));
+  // The emission unit's operations per kind of ray; the sign bit keeps its own
+  // sign_bit_cycles, so the validity bit's dot product is not the unit's.
+  SelfIntersectionMethod arithmetic = replayer.options().method;
+  arithmetic.validity_bit = false;
+  for (const bool child : {false, true})
+    for (const bool shadow : {false, true})
+      unit_ops_[child][shadow] = static_cast<uint32_t>(emission_ops_for(arithmetic, child, shadow).total());
   finish_.reserve(std::min<uint64_t>(history_capacity_, uint64_t{1} << 20));  // address space only until rays arrive
   const SourceCounters& c = counters_;
   const EmissionCounters& e = emission_;
@@ -52,6 +61,8 @@ RaySource::RaySource(sc_core::sc_module_name name, const HwConfig& config, Funct
                c.sign_bits_computed);
   declare_stat("emission_ops", "operations", "emission-time method operations (offsets, tmin, ...)",
                c.emission_ops);
+  declare_stat("emission_unit_ops", "operations", "arithmetic operations through the emission unit (none without one)",
+               c.emission_unit_ops);
   declare_stat("no_free_slot_cycles", "lane-cycles", "cycles emitted rays waited because every slot was busy",
                c.no_free_slot_cycles);
   declare_stat("children_waited", "rays", "rays that entered the buffer before their parent's result",
@@ -83,6 +94,8 @@ nlohmann::json RaySource::parameters() const {
           {"issue_interval", config_.issue_interval},
           {"sign_bit_cycles", config_.sign_bit_cycles},
           {"emission_op_cycles", config_.emission_op_cycles},
+          {"emission_width", config_.emission_width},
+          {"emission_depth", config_.emission_depth},
           {"bundles", config_.bundles},
           {"method", replayer_.options().method.name()}};
 }
@@ -95,7 +108,13 @@ uint64_t RaySource::emission_cycles(const TraceRay& tr) {
   }
   const uint32_t ops = emission_ops(replayer_.options().method, tr);
   counters_.emission_ops += ops;
-  cost += uint64_t{ops} * config_.emission_op_cycles;
+  if (config_.emission_width == 0) {
+    cost += uint64_t{ops} * config_.emission_op_cycles;
+    return cost;
+  }
+  const uint32_t n = unit_ops_[tr.parent_prim >= 0][tr.kind == RayKind::Shadow];
+  counters_.emission_unit_ops += n;
+  if (n) cost += (n + config_.emission_width - 1) / config_.emission_width + config_.emission_depth;
   return cost;
 }
 

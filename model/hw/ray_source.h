@@ -194,6 +194,7 @@ class RaySource final : public sc_core::sc_module, public StatProvider {
   uint64_t emission_cycles(const TraceRay& tr);
 
   SourceConfig config_;
+  uint32_t unit_ops_[2][2] = {};  ///< emission-unit operations by [has a parent surface][shadow]
   uint32_t latency_;
   FunctionalReplayer& replayer_;
   RayFeed feed_;

@@ -17,6 +17,7 @@ RayOutcome conclude_ray(const TraceRay& tr, const EmittedRay& er, const Hit& hit
   if (er.reversed && out.hit.prim == tr.parent_prim) out.answer = -1;
 
   ++ks.rays;
+  ks.children += tr.parent_prim >= 0;
   ks.hits += out.answer >= 0;
   ks.emission_fallbacks += er.emission_fallback;
   ks.offset_fallbacks += er.offset_fallback;

@@ -34,6 +34,8 @@ nlohmann::json traversal_json(const TraversalCounters& t, uint64_t rays) {
   return {{"node_visits", t.node_visits},
           {"box_tests", t.box_tests},
           {"triangle_tests", t.triangle_tests},
+          {"stack_pushes", t.stack_pushes},
+          {"stack_pops", t.stack_pops},
           {"node_visits_per_ray", ratio(t.node_visits, rays)},
           {"triangle_tests_per_ray", ratio(t.triangle_tests, rays)}};
 }
@@ -43,6 +45,7 @@ nlohmann::json traversal_json(const TraversalCounters& t, uint64_t rays) {
 void KindStats::add(const KindStats& o) {
   rays += o.rays;
   hits += o.hits;
+  children += o.children;
   for (int v = 0; v < kVerdictCount; ++v) verdicts[v] += o.verdicts[v];
   emission_fallbacks += o.emission_fallbacks;
   offset_fallbacks += o.offset_fallbacks;
@@ -56,17 +59,49 @@ KindStats ReplayStats::total() const {
   return t;
 }
 
-static nlohmann::json method_cost_json(const MethodCost& c) {
-  return {{"emission", c.emission}, {"candidate", c.candidate}, {"suspect", c.suspect}};
+std::array<RayCategory, 4> ray_categories(const ReplayStats& s) {
+  std::array<RayCategory, 4> c;
+  for (int i = 0; i < 4; ++i) c[i].child = i & 1, c[i].shadow = i & 2;
+  for (int k = 0; k < kRayKindCount; ++k) {
+    const KindStats& ks = s.by_kind[k];
+    const int shadow = static_cast<RayKind>(k) == RayKind::Shadow ? 2 : 0;
+    c[1 | shadow].rays += ks.children;
+    c[shadow].rays += ks.rays - ks.children;
+  }
+  return c;
 }
 
-/// The method's operations over the replay: emission once per ray, candidate and
-/// suspect costs times the counts measured (method_costs.h).
-static nlohmann::json method_ops_json(const nlohmann::json& cost, const KindStats& t) {
-  const uint64_t total = cost.value("emission", 0) * t.rays +
-                         cost.value("candidate", 0) * t.candidates.candidates +
-                         cost.value("suspect", 0) * t.candidates.suspects;
-  return {{"total", total}, {"per_ray", ratio(total, t.rays)}};
+/// The method's operation counts: the totals of method_costs.h, and the
+/// emission and result operations of each kind of ray (`by_ray`: the parts of
+/// an emission-time method act on some rays only), which method_ops_json uses.
+static nlohmann::json method_cost_json(const SelfIntersectionMethod& m) {
+  const MethodCost c = method_cost(m);
+  nlohmann::json by_ray;
+  for (const bool child : {false, true})
+    for (const bool shadow : {false, true})
+      by_ray[std::string(child ? "child" : "lone") + (shadow ? "_shadow" : "")] =
+          emission_ops_for(m, child, shadow).total() + result_ops_for(m, shadow).total();
+  return {{"emission", c.emission}, {"result", c.result}, {"candidate", c.candidate}, {"suspect", c.suspect},
+          {"by_ray", by_ray}};
+}
+
+/// The method's operations over the replay: each ray's emission and result
+/// operations (by_ray: those of its kind), candidate and suspect costs times
+/// the counts measured (method_costs.h).
+uint64_t method_ops_total(const nlohmann::json& cost, const ReplayStats& s) {
+  const KindStats t = s.total();
+  uint64_t total = cost.value("candidate", 0) * t.candidates.candidates + cost.value("suspect", 0) * t.candidates.suspects;
+  for (const RayCategory& c : ray_categories(s)) {
+    const std::string key = std::string(c.child ? "child" : "lone") + (c.shadow ? "_shadow" : "");
+    total += c.rays * (cost.contains("by_ray") ? cost["by_ray"].value(key, 0)
+                                               : cost.value("emission", 0) + cost.value("result", 0));
+  }
+  return total;
+}
+
+static nlohmann::json method_ops_json(const nlohmann::json& cost, const ReplayStats& s) {
+  const uint64_t total = method_ops_total(cost, s);
+  return {{"total", total}, {"per_ray", ratio(total, s.total().rays)}};
 }
 
 nlohmann::json ReplayStats::to_json(const nlohmann::json& config) const {
@@ -91,7 +126,7 @@ nlohmann::json ReplayStats::to_json(const nlohmann::json& config) const {
   j["by_kind"] = kinds;
   j["avoidance"] = avoidance_json(t.candidates);
   j["traversal"] = traversal_json(t.traversal, t.rays);
-  if (config.contains("cost_ops")) j["method_ops"] = method_ops_json(config["cost_ops"], t);
+  if (config.contains("cost_ops")) j["method_ops"] = method_ops_json(config["cost_ops"], *this);
   j["sim"] = {{"mode", mode},
               {"wall_s", wall_s},
               {"rays_per_s", wall_s > 0 ? t.rays / wall_s : 0.0},
@@ -130,7 +165,7 @@ nlohmann::json replay_config_json(const ReplayOptions& opt) {
           {"tester", tester_name(opt.tester)},
           {"hitpoint", hit_point_mode_name(opt.hit_point)},
           {"bits_per_ray", m.bits_per_ray()},
-          {"cost_ops", method_cost_json(method_cost(m))},
+          {"cost_ops", method_cost_json(m)},
           {"shadow_any_hit", opt.any_hit_for_shadow},
           {"tmin_eps", m.tmin_eps},
           {"offset_normal_eps", m.offset_normal_eps},

@@ -19,6 +19,7 @@ namespace vbsim {
 struct KindStats {
   uint64_t rays = 0;
   uint64_t hits = 0;                        ///< rays that returned a hit (shadow: occluded)
+  uint64_t children = 0;                    ///< rays with a parent surface (parent_prim >= 0)
   std::array<uint64_t, kVerdictCount> verdicts{};
   uint64_t emission_fallbacks = 0;  ///< rays where an emission step lacked parent data
   uint64_t offset_fallbacks = 0;    ///< rays an offset placed off its reference (degenerate normal)
@@ -41,6 +42,19 @@ struct ReplayStats {
   /// A short human summary (rays, verdicts, rejection rate, speed).
   std::string summary() const;
 };
+
+/// The four kinds of ray an emission-time method treats apart: with or without
+/// a parent surface (`child`), shadow or not; and how many of each a replay had.
+struct RayCategory {
+  bool child = false, shadow = false;
+  uint64_t rays = 0;
+};
+std::array<RayCategory, 4> ray_categories(const ReplayStats& stats);
+
+/// The method's operations over a replay, from its config's `cost_ops`: each
+/// ray's emission and result operations (`by_ray`, by ray category), plus the
+/// per-candidate and per-suspect costs times the counts measured.
+uint64_t method_ops_total(const nlohmann::json& cost_ops, const ReplayStats& stats);
 
 /// The effective configuration of a replay as JSON (method, tester, parameters).
 nlohmann::json replay_config_json(const ReplayOptions& opt);

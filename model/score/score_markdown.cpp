@@ -18,6 +18,11 @@ std::string rate_cell(const nlohmann::json& r) {
                      format_per_million(r["lower"].get<double>()), format_per_million(r["upper"].get<double>()));
 }
 
+/// A per-million rate with its 95% interval: "rate [lower, upper]".
+std::string interval_cell(double rate, double lower, double upper) {
+  return fmt::format("{} [{}, {}]", format_per_million(rate), format_per_million(lower), format_per_million(upper));
+}
+
 std::string percent(double x) { return x == 0 ? "0" : fmt::format("{:.3f}", 100 * x); }
 
 void add_unique(std::vector<std::string>& v, const std::string& x) {
@@ -56,9 +61,11 @@ std::string summaries(const std::vector<TradeoffRow>& rows, const std::vector<st
   for (const std::string& tester : testers) {
     md += fmt::format("\n## Summary, {} tester: secondary-ray errors per million\n\n", tester);
     md += "self_hit + false_hit + missed per million scored secondary rays (every ray that leaves a surface: "
-          "reflection, refraction, diffuse and shadow rays). This is each method's headline figure.\n\n";
-    md += grid(methods, families, rows, tester,
-               [](const TradeoffRow& r) { return format_per_million(r.secondary_rate); });
+          "reflection, refraction, diffuse and shadow rays), with its 95% Wilson interval. This is each "
+          "method's headline figure.\n\n";
+    md += grid(methods, families, rows, tester, [](const TradeoffRow& r) {
+      return interval_cell(r.secondary_rate, r.secondary_lower, r.secondary_upper);
+    });
     const bool misses = std::any_of(rows.begin(), rows.end(), [&](const TradeoffRow& r) {
       return r.tester == tester && r.camera_misses > 0;
     });
@@ -66,9 +73,16 @@ std::string summaries(const std::vector<TradeoffRow>& rows, const std::vector<st
       md += fmt::format("\n### Camera rays the {} tester missed, per million camera rays\n\n", tester);
       md += "Camera rays whose exact answer is a hit and that this tester reported as a miss (for a "
             "conservative tester, the price of its bound); no method acts on camera rays but `tmin`.\n\n";
-      md += grid(methods, families, rows, tester,
-                 [](const TradeoffRow& r) { return format_per_million(r.camera_miss_rate); });
+      md += grid(methods, families, rows, tester, [](const TradeoffRow& r) {
+        return interval_cell(r.camera_miss_rate, r.camera_lower, r.camera_upper);
+      });
     }
+    md += fmt::format("\n### The method's energy per ray, pJ, {} tester\n\n", tester);
+    md += "The operations the method adds (emission, result, candidate and suspect tests) and its extra "
+          "ray-record bits, priced by the technology file (`docs/energy.md`), per ray of the family; no "
+          "memory, no leakage.\n\n";
+    md += grid(methods, families, rows, tester,
+               [](const TradeoffRow& r) { return fmt::format("{:.3g}", r.method_energy_per_ray_pj); });
     const auto cycled = std::find_if(rows.begin(), rows.end(),
                                      [&](const TradeoffRow& r) { return r.tester == tester && r.has_cycles; });
     if (cycled != rows.end()) {
@@ -112,7 +126,8 @@ std::string score_markdown(const nlohmann::json& score, const std::string& regen
         "interval in brackets; a zero count still has a non-zero upper bound. Per family, the trade-off "
         "table puts each method and tester's secondary errors next to the camera rays its tester missed, "
         "its bits per ray in flight, its operations per ray (`docs/methods.md`, with the candidates and "
-        "suspects the family really produces), the cycle-level model's cycles per ray and rays per cycle "
+        "suspects the family really produces), the operations' energy per ray (all of them, and the "
+        "method's own; `docs/energy.md`), the cycle-level model's cycles per ray and rays per cycle "
         "(when measured) and its functional replay speed (rays/s, one thread, verdicts included). "
         "`suspect %` and `rejected %` are the avoidance unit's suspects and the filters' rejections per "
         "candidate hit.\n";

@@ -167,6 +167,7 @@ std::vector<ScoreCell> run_score(const std::vector<ScoreFamily>& families,
       cell.method = c.method;
       cell.tester = c.options.tester;
       cell.config = replay_config_json(c.options);
+      cell.options = c.options;
       cells.push_back(std::move(cell));
     }
     for (const std::string& trace : fam.traces) score_trace(trace, configs, filters, &cells[first], options);

@@ -44,6 +44,7 @@ struct ScoreCell {
   std::string method;
   TesterKind tester = TesterKind::ThreeHalfPlane;
   nlohmann::json config;  ///< the effective configuration (replay_config_json)
+  ReplayOptions options;  ///< the same, as options (the energy model prices its method and tester)
   ReplayStats stats;      ///< summed over the traces; wall_s: this configuration's replay time
   int traces = 0;
   bool has_cycles = false;   ///< measured by the cycle-level model (cycle mode)

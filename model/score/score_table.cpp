@@ -2,7 +2,7 @@
 
 #include <fmt/format.h>
 
-
+#include "energy/operation_energy.h"
 #include "score/wilson_interval.h"
 
 namespace vbsim {
@@ -15,13 +15,6 @@ constexpr Verdict kRated[] = {Verdict::Correct, Verdict::SelfHit, Verdict::False
 
 double ratio(uint64_t num, uint64_t den) { return den ? static_cast<double>(num) / den : 0.0; }
 
-/// The method's operations per ray (method_costs.h): emission per ray plus the
-/// candidate and suspect costs times the counts this run measured.
-double ops_per_ray(const nlohmann::json& cost, const KindStats& t) {
-  const double total = cost.value("emission", 0.0) * t.rays + cost.value("candidate", 0.0) * t.candidates.candidates +
-                       cost.value("suspect", 0.0) * t.candidates.suspects;
-  return t.rays ? total / t.rays : 0.0;
-}
 
 nlohmann::json rate_json(uint64_t count, uint64_t of) {
   const Proportion p = wilson_interval(count, of);
@@ -65,7 +58,9 @@ std::string format_per_million(double x) {
 }
 
 nlohmann::json score_json(const std::vector<ScoreFamily>& families, const std::vector<ScoreCell>& cells,
-                          const std::string& command) {
+                          const std::string& command, const TechFile* tech) {
+  const TechFile shipped = tech ? TechFile{} : load_tech_file(default_tech_path());
+  const TechFile& t = tech ? *tech : shipped;
   nlohmann::json j;
   j["command"] = command;
   j["confidence"] = {{"level", 0.95}, {"z", kZ95}, {"interval", "wilson"}, {"per", kPerMillion}};
@@ -78,7 +73,11 @@ nlohmann::json score_json(const std::vector<ScoreFamily>& families, const std::v
     nlohmann::json all = row_json(cell, "all", total);
     all["rays_per_s"] = cell.stats.wall_s > 0 ? total.rays / cell.stats.wall_s : 0.0;
     all["config"] = cell.config;
-    all["ops_per_ray"] = ops_per_ray(cell.config["cost_ops"], total);
+    all["ops_per_ray"] = ratio(method_ops_total(cell.config["cost_ops"], cell.stats), total.rays);
+    const OperationEnergy e = operation_energy(t, cell.options.method, cell.tester, cell.stats);
+    all["energy"] = {{"tech", t.path},
+                     {"per_ray_pj", per_ray(e.total(), total.rays)},
+                     {"method_per_ray_pj", per_ray(e.method, total.rays)}};
     if (cell.has_cycles)
       all["cycle"] = {{"preset", cell.cycle_preset},
                       {"rays", cell.cycle_rays},

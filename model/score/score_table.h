@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "energy/tech_file.h"
 #include "score/score_run.h"
 
 namespace vbsim {
@@ -22,9 +23,11 @@ constexpr const char* kSecondaryKind = "secondary";
 /// per_million {verdict: {rate, lower, upper}}, errors {count, per_million}
 /// (self_hit + false_hit + missed), emission and offset fallbacks, avoidance;
 /// `all` rows add rays_per_s, ops_per_ray, config and, when measured, `cycle`
-/// {preset, rays, cycles, cycles_per_ray, rays_per_cycle}).
+/// {preset, rays, cycles, cycles_per_ray, rays_per_cycle}) and `energy`
+/// {tech, per_ray_pj, method_per_ray_pj}: the operations' energy priced by
+/// `tech` (null: the shipped default; energy/operation_energy.h).
 nlohmann::json score_json(const std::vector<ScoreFamily>& families, const std::vector<ScoreCell>& cells,
-                          const std::string& command);
+                          const std::string& command, const TechFile* tech = nullptr);
 
 /// A per-million rate for a table: integers from 100 up, one decimal from 1, two
 /// significant digits below 1, "0" for zero.

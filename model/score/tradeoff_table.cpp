@@ -44,6 +44,10 @@ std::vector<TradeoffRow> tradeoff_rows(const nlohmann::json& score) {
       t.bits_per_ray = r["config"]["bits_per_ray"].get<int>();
       t.ops_per_ray = r.value("ops_per_ray", 0.0);
       t.rays_per_s = r.value("rays_per_s", 0.0);
+      if (r.contains("energy")) {
+        t.energy_per_ray_pj = r["energy"]["per_ray_pj"].get<double>();
+        t.method_energy_per_ray_pj = r["energy"]["method_per_ray_pj"].get<double>();
+      }
       if (r.contains("cycle")) {
         t.has_cycles = true;
         t.cycles_per_ray = r["cycle"]["cycles_per_ray"].get<double>();
@@ -62,6 +66,8 @@ std::vector<TradeoffRow> tradeoff_rows(const nlohmann::json& score) {
       t.camera_scored = r["scored"].get<uint64_t>();
       t.camera_misses = r["counts"]["missed"].get<uint64_t>();
       t.camera_miss_rate = r["per_million"]["missed"]["rate"].get<double>();
+      t.camera_lower = r["per_million"]["missed"]["lower"].get<double>();
+      t.camera_upper = r["per_million"]["missed"]["upper"].get<double>();
     }
   }
   return out;
@@ -70,15 +76,17 @@ std::vector<TradeoffRow> tradeoff_rows(const nlohmann::json& score) {
 std::string tradeoff_markdown(const std::vector<TradeoffRow>& rows) {
   const bool cycles = std::any_of(rows.begin(), rows.end(), [](const TradeoffRow& r) { return r.has_cycles; });
   std::string md =
-      "| method | tester | secondary errors /M [95%] | secondary rays | camera misses /M | bits/ray | ops/ray |";
+      "| method | tester | secondary errors /M [95%] | secondary rays | camera misses /M [95%] | bits/ray | ops/ray | "
+      "pJ/ray (ops) | method pJ/ray |";
   md += cycles ? " cycles/ray | rays/cycle |" : "";
-  md += " rays/s |\n|---|---|---|---:|---:|---:|---:|";
+  md += " rays/s |\n|---|---|---|---:|---:|---:|---:|---:|---:|";
   md += cycles ? "---:|---:|" : "";
   md += "---:|\n";
   for (const TradeoffRow& r : rows) {
-    md += fmt::format("| `{}` | {} | {} | {} | {} | {} | {:.3g} |", r.method, r.tester,
+    md += fmt::format("| `{}` | {} | {} | {} | {} | {} | {:.3g} | {:.4g} | {:.3g} |", r.method, r.tester,
                       per_million_cell(r.secondary_rate, r.secondary_lower, r.secondary_upper), r.secondary_scored,
-                      format_per_million(r.camera_miss_rate), r.bits_per_ray, r.ops_per_ray);
+                      per_million_cell(r.camera_miss_rate, r.camera_lower, r.camera_upper), r.bits_per_ray,
+                      r.ops_per_ray, r.energy_per_ray_pj, r.method_energy_per_ray_pj);
     if (cycles)
       md += r.has_cycles ? fmt::format(" {:.3g} | {:.4g} |", r.cycles_per_ray, r.rays_per_cycle) : "  |  |";
     md += fmt::format(" {:.0f} |\n", r.rays_per_s);
@@ -92,12 +100,16 @@ std::string tradeoff_text(const std::vector<TradeoffRow>& rows) {
   std::string preset = "small";
   for (const TradeoffRow& r : rows)
     if (r.has_cycles) preset = r.cycle_preset;
-  std::string s = fmt::format("{:<{}}  {:<16}  {:>16}  {:>14}  {:>13}  {:>8}\n", "method", width, "tester",
-                              "secondary err/M", "camera misses", fmt::format("cycles/ray {}", preset), "bits/ray");
+  std::string s = fmt::format("{:<{}}  {:<16}  {:>24}  {:>14}  {:>20}  {:>13}  {:>8}  {:>8}\n", "method", width,
+                              "tester", "secondary err/M [95%]", "camera misses", "camera /M [95%]",
+                              fmt::format("cycles/ray {}", preset), "bits/ray", "pJ/ray");
   for (const TradeoffRow& r : rows)
-    s += fmt::format("{:<{}}  {:<16}  {:>16}  {:>14}  {:>13}  {:>8}\n", r.method, width, r.tester,
-                     format_per_million(r.secondary_rate), fmt::format("{} of {}", r.camera_misses, r.camera_scored),
-                     r.has_cycles ? fmt::format("{:.2f}", r.cycles_per_ray) : "-", r.bits_per_ray);
+    s += fmt::format("{:<{}}  {:<16}  {:>24}  {:>14}  {:>20}  {:>13}  {:>8}  {:>8.4g}\n", r.method, width, r.tester,
+                     per_million_cell(r.secondary_rate, r.secondary_lower, r.secondary_upper),
+                     fmt::format("{} of {}", r.camera_misses, r.camera_scored),
+                     per_million_cell(r.camera_miss_rate, r.camera_lower, r.camera_upper),
+                     r.has_cycles ? fmt::format("{:.2f}", r.cycles_per_ray) : "-", r.bits_per_ray,
+                     r.energy_per_ray_pj);
   return s;
 }
 

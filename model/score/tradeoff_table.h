@@ -19,9 +19,11 @@ struct TradeoffRow {
   uint64_t secondary_scored = 0, secondary_errors = 0;
   double secondary_rate = 0, secondary_lower = 0, secondary_upper = 0;  ///< per million
   uint64_t camera_scored = 0, camera_misses = 0;
-  double camera_miss_rate = 0;  ///< per million camera rays
+  double camera_miss_rate = 0, camera_lower = 0, camera_upper = 0;  ///< per million camera rays
   int bits_per_ray = 0;
   double ops_per_ray = 0, rays_per_s = 0;
+  double energy_per_ray_pj = 0;         ///< the operations' energy per ray (no memory)
+  double method_energy_per_ray_pj = 0;  ///< of which the method's own
   bool has_cycles = false;
   double cycles_per_ray = 0, rays_per_cycle = 0;
   std::string cycle_preset;
@@ -35,8 +37,9 @@ std::vector<TradeoffRow> tradeoff_rows(const nlohmann::json& score);
 std::string tradeoff_markdown(const std::vector<TradeoffRow>& rows);
 
 /// The same as a fixed-width text table for a terminal (the main job's):
-/// method, tester, secondary errors per million, camera misses, cycles per
-/// ray and bits per ray.
+/// method, tester, secondary errors per million and camera misses per million
+/// with their 95% Wilson intervals, cycles per ray, bits per ray and the
+/// operations' energy per ray.
 std::string tradeoff_text(const std::vector<TradeoffRow>& rows);
 
 }  // namespace vbsim

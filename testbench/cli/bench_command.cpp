@@ -52,7 +52,11 @@ void run_bench(const BenchArgs& a) {
     const CycleBenchResult c = run_cycle_bench(scene, opt, cfg, p);
     r = c.speed;
     j = r.to_json();
-    j["hw"] = {{"config", hw::hw_config_json(cfg)}, {"cycles", c.cycles}, {"rays_per_cycle", c.rays_per_cycle}};
+    j["hw"] = {{"config", hw::hw_config_json(cfg)},
+               {"cycles", c.cycles},
+               {"rays_per_cycle", c.rays_per_cycle},
+               {"energy", c.energy},
+               {"area", c.area}};
     if (!a.quiet)
       fmt::print("cycle-level model: {} preset, {} cycles, {:.4f} rays/cycle\n", cfg.preset, c.cycles,
                  c.rays_per_cycle);

@@ -21,7 +21,9 @@
 #include "progress/progress_meter.h"
 #include "provenance/provenance.h"
 #include "replay/replay_run.h"
+#include "energy/operation_energy.h"
 #include "systemc_messages.h"
+#include "tech_option.h"
 #include "trace/checked_trace_source.h"
 #include "trace/trace_file.h"
 #include "trace/trace_ray_count.h"
@@ -63,6 +65,7 @@ struct ReplayArgs {
   bool timeline_window_given = false;  // --timeline-start or --timeline-cycles on the command line
   bool vcd_window_given = false;       // --vcd-start or --vcd-cycles on the command line
   bool quiet = false;
+  std::string tech;  // --tech FILE (empty: the shipped default)
   MethodOptions method;
 };
 
@@ -74,9 +77,9 @@ std::string ray_log_line(const hw::RayTimes& t) {
       t.id, t.parent, t.entered, t.ready, t.emitted, t.started, t.finished, t.core, t.slot);
 }
 
-ReplayStats run_cycle_mode(const ReplayArgs& a, const ReplayOptions& opt, TraceSource& source, const SceneAndBvh& sb,
-                           std::ostream* hits, ProgressMeter& meter, nlohmann::json& config, nlohmann::json& hw,
-                           std::string& table) {
+ReplayStats run_cycle_mode(const ReplayArgs& a, const ReplayOptions& opt, const TechFile& tech, TraceSource& source,
+                           const SceneAndBvh& sb, std::ostream* hits, ProgressMeter& meter, nlohmann::json& config,
+                           nlohmann::json& hw, std::string& table) {
   hw::HwConfig cfg = hw::resolve_hw_config(a.method.config, a.preset);
   if (hw::slot_host_bytes(cfg) >= hw::kSlotMemoryWarningBytes)
     fmt::print(stderr, "vbsim: warning: hw: {} ray slots ({} cores x {} slots_per_core) take about {} MB of host memory\n",
@@ -90,6 +93,7 @@ ReplayStats run_cycle_mode(const ReplayArgs& a, const ReplayOptions& opt, TraceS
   source.set_triangle_count(sb.scene.size());
   hw::CycleRunOptions run;
   run.stop = &g_stop;
+  run.tech = &tech;
   if (meter.shown()) run.progress = [&meter](const hw::CycleEngine& e) { meter.update(e.rays_done()); };
   run.vcd = {a.vcd, a.vcd_start, a.vcd_cycles, a.trace_scope};
   run.timeline = {a.timeline, a.timeline_start, a.timeline_cycles, a.trace_scope};
@@ -153,10 +157,14 @@ int run_replay_command(const ReplayArgs& a) {
   check_mode_options(a);
   set_systemc_quiet(a.quiet);
   const ReplayOptions opt = resolve_method_options(a.method);
+  const TechFile tech = resolve_tech(a.tech);
   auto file = open_trace(a.trace);
   // Before any long work: no output may overwrite an input or another output,
   // and every output must be creatable.
-  check_output_paths({{"trace", a.trace}, {"option '--config'", a.method.config}, {"scene", file->header().scene_path}},
+  check_output_paths({{"trace", a.trace},
+                      {"option '--config'", a.method.config},
+                      {"option '--tech'", a.tech},
+                      {"scene", file->header().scene_path}},
                      {{"option '--stats'", a.stats},
                       {"option '--hits'", a.hits},
                       {"option '--timeline'", a.timeline},
@@ -174,7 +182,7 @@ int run_replay_command(const ReplayArgs& a) {
   checks.triangles = &sb.scene.triangles;
   auto source = std::make_unique<CheckedTraceSource>(*file, checks);
   // The inputs every output names with their checksums.
-  const std::vector<std::string> inputs = {a.trace, file->header().scene_path, a.method.config};
+  const std::vector<std::string> inputs = {a.trace, file->header().scene_path, a.method.config, tech.path};
 
   if (hits_file) hits_file->stream() << hits_header_line(provenance_json(inputs));
   nlohmann::json config = replay_config_json(opt);
@@ -187,7 +195,7 @@ int run_replay_command(const ReplayArgs& a) {
   try {
     const InterruptScope interrupts;
     stats = a.mode == "cycle"
-                ? run_cycle_mode(a, opt, *source, sb, hits, meter, config, hw, table)
+                ? run_cycle_mode(a, opt, tech, *source, sb, hits, meter, config, hw, table)
                 : run_replay(*source, sb, opt, hits, &g_stop,
                              meter.shown() ? ReplayProgress([&meter](uint64_t n) { meter.update(n); }) : nullptr);
   } catch (const OutputError& e) {
@@ -210,6 +218,9 @@ int run_replay_command(const ReplayArgs& a) {
     config["scene"] = source->header().scene_path;
     config["triangles"] = sb.scene.size();
     nlohmann::json j = stats.to_json(config);
+    // The operations' energy in both modes; the cycle-level model adds memory and leakage in hw.energy.
+    j["energy"] = operation_energy_json(tech, operation_energy(tech, opt.method, opt.tester, stats),
+                                        stats.total().rays);
     if (!hw.is_null()) j["hw"] = std::move(hw);
     j["provenance"] = provenance;
     j["checks"] = source->summary_json();
@@ -221,6 +232,12 @@ int run_replay_command(const ReplayArgs& a) {
     fmt::print("vbsim replay {}  method {}  tester {}  scene {} ({} triangles)\n", a.trace,
                opt.method.name(), tester_name(opt.tester), source->header().scene, sb.scene.size());
     fmt::print("{}{}", stats.summary(), table);
+    if (a.mode != "cycle") {
+      const OperationEnergy e = operation_energy(tech, opt.method, opt.tester, stats);
+      const uint64_t rays = stats.total().rays;
+      fmt::print("energy (operations only, no memory): {:.4g} pJ/ray, the method {:.4g} pJ/ray ({})\n",
+                 per_ray(e.total(), rays), per_ray(e.method, rays), tech.path);
+    }
   }
   return stats.partial ? kExitInterrupted : kExitSuccess;
 }
@@ -265,6 +282,7 @@ void add_replay_command(CLI::App& app) {
   cmd->add_option("--stats", args->stats, "write the statistics JSON here");
   cmd->add_option("--hits", args->hits, "write one JSON line per ray here (after a provenance line)");
   cmd->add_flag("--quiet,-q", args->quiet, "print nothing on success (no progress, no SystemC info messages)");
+  add_tech_option(*cmd, args->tech);
   add_method_options(*cmd, args->method, "none");
   cmd->callback([args, start, cycles, vcd_start, vcd_cycles] {
     args->timeline_window_given = start->count() > 0 || cycles->count() > 0;

@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "commands.h"
+#include "tech_option.h"
 #include "io/atomic_output_file.h"
 #include "io/output_paths.h"
 #include "exit_codes.h"
@@ -37,6 +38,7 @@ struct ScoreArgs {
   bool merge = false;
   bool testers_given = false;
   std::string mode = "functional", preset, cycle_testers;
+  std::string tech;  // --tech FILE (empty: the shipped default)
 };
 
 
@@ -90,7 +92,10 @@ void run_score_command(const ScoreArgs& a) {
   std::vector<NamedPath> named_inputs;
   for (const ScoreFamily& f : families)
     for (const std::string& t : f.traces) named_inputs.push_back({"trace", t});
+  named_inputs.push_back({"option '--tech'", a.tech});
   check_output_paths(named_inputs, {{"option '--out'", a.out}, {"option '--accuracy-md'", a.markdown}});
+  const TechFile tech = resolve_tech(a.tech);
+  if (!a.tech.empty()) command += " --tech " + a.tech;
 
   if (!a.methods.empty()) command += " --methods " + a.methods;
   command += " --testers " + a.testers;
@@ -118,7 +123,8 @@ void run_score_command(const ScoreArgs& a) {
   run.parent_window = a.parent_window;
   const std::vector<ScoreCell> cells = run_score(families, configs, run);
   meter.finish();
-  write_outputs(a, score_json(families, cells, command), command, inputs);
+  inputs.push_back(tech.path);
+  write_outputs(a, score_json(families, cells, command, &tech), command, inputs);
 }
 
 }  // namespace
@@ -144,6 +150,7 @@ void add_score_command(CLI::App& app) {
                   "cycle-level model on the same traces (one replay at a time)")
       ->capture_default_str();
   cmd->add_option("--preset", args->preset, "cycle mode: hardware preset, small or large [small]");
+  add_tech_option(*cmd, args->tech);
   cmd->add_option("--cycle-testers", args->cycle_testers,
                   "cycle mode: the testers whose configurations are timed [every tester of --testers]");
   add_parent_window_option(*cmd, args->parent_window);

@@ -65,16 +65,33 @@ void strip_unpinned(nlohmann::json& j) {
       hw["memory"].erase("at_lookahead_cycles");
       hw["memory"].erase("l2_lookups_in_time_order");
       for (const char* f : {"rays_per_cycle", "window", "dependencies", "missing_parents", "bundles", "bundle_cycles",
-                            "bundle_max"})
+                            "bundle_max", "emission_width", "emission_depth"})
         hw["source"].erase(f);
       hw.erase("shader");
     }
   }
-  for (const char* extra : {"provenance", "vbsim", "checks", "offset_fallbacks"}) j.erase(extra);
+  for (const char* extra : {"provenance", "vbsim", "checks", "offset_fallbacks", "energy"}) j.erase(extra);
   if (j.contains("hw")) {
     j["hw"].erase("instances");
     j["hw"].erase("emission");
+    j["hw"].erase("energy");
+    j["hw"].erase("area");
   }
+  // Counts added after the files were pinned: the per-ray result operations,
+  // the emission operations by ray category, and the traversal stack's pushes
+  // and pops (energy model, docs/energy.md).
+  if (j.contains("config") && j["config"].contains("cost_ops")) {
+    j["config"]["cost_ops"].erase("result");
+    j["config"]["cost_ops"].erase("by_ray");
+  }
+  const auto strip_stack = [](nlohmann::json& t) {
+    t.erase("stack_pushes");
+    t.erase("stack_pops");
+  };
+  if (j.contains("traversal")) strip_stack(j["traversal"]);
+  if (j.contains("by_kind"))
+    for (nlohmann::json& k : j["by_kind"])
+      if (k.contains("traversal")) strip_stack(k["traversal"]);
 }
 
 /// The SystemC run's duration (in whole picoseconds: the fields are converted

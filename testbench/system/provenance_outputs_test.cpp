@@ -67,7 +67,9 @@ TEST_CASE("stats, hits, VCD and timeline name what made them", "[cli][provenance
                     " --hits " + (dir / "h.jsonl").string() + " --vcd " + (dir / "w.vcd").string() + " --timeline " +
                     (dir / "t.json").string())
               .exit_code == 0);
-  const std::vector<std::string> inputs = {trace, scene, cfg};
+  // The technology file that priced the energy is an input too (the shipped default).
+  const std::string tech = source_dir() + "/model/energy/tech/45nm.json";
+  const std::vector<std::string> inputs = {trace, scene, cfg, tech};
   check_provenance(nlohmann::json::parse(read_file(dir / "s.json"))["provenance"], "replay", inputs);
   const std::string hits = read_file(dir / "h.jsonl");
   check_provenance(nlohmann::json::parse(hits.substr(0, hits.find('\n')))["provenance"], "replay", inputs);
@@ -95,8 +97,9 @@ TEST_CASE("traces, scenes, score tables and images name what made them", "[cli][
   REQUIRE(run_vbsim("score -q " + trace + " --methods none --testers three-half-plane --out " +
                     (dir / "s.json").string() + " --accuracy-md " + md)
               .exit_code == 0);
-  check_provenance(nlohmann::json::parse(read_file(dir / "s.json"))["provenance"], "score", {trace});
-  check_provenance(json_after(read_file(md), "<!-- vbsim-provenance ", " -->"), "score", {trace});
+  const std::string tech = source_dir() + "/model/energy/tech/45nm.json";
+  check_provenance(nlohmann::json::parse(read_file(dir / "s.json"))["provenance"], "score", {trace, tech});
+  check_provenance(json_after(read_file(md), "<!-- vbsim-provenance ", " -->"), "score", {trace, tech});
   const std::string png = (dir / "i.png").string();
   REQUIRE(run_vbsim("render -q " + ply + " --size 4x3 -o " + png).exit_code == 0);
   check_provenance(png_note(read_file(png), "vbsim-provenance"), "render", {ply});

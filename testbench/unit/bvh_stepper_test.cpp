@@ -73,6 +73,8 @@ void check_ray(const Bvh& bvh, const CandidateFilter& filter, BvhStepper<ThreeHa
   REQUIRE(got.tc.node_visits == tc.node_visits);
   REQUIRE(got.tc.box_tests == tc.box_tests);
   REQUIRE(got.tc.triangle_tests == tc.triangle_tests);
+  REQUIRE(got.tc.stack_pushes == tc.stack_pushes);
+  REQUIRE(got.tc.stack_pops == tc.stack_pops);
   ++t.rays;
   t.spills += got.spills;
   t.refills += got.refills;
@@ -214,6 +216,14 @@ TEST_CASE("stepper spills and refills a hand-built comb exactly", "[stepper]") {
   CHECK(tc.node_visits == n);
   CHECK(tc.box_tests == 1 + 2 * n);
   CHECK(tc.triangle_tests == n + 1);
+  // Every node meets both children: one push each, and the search pops them all.
+  CHECK(tc.stack_pushes == n);
+  CHECK(tc.stack_pops == n);
+  CandidateCounters fcc;
+  TraversalCounters ftc;
+  closest_hit<ThreeHalfPlaneTester>(bvh, ray, filter, fcc, ftc);
+  CHECK(ftc.stack_pushes == n);
+  CHECK(ftc.stack_pops == n);
 
   // The same comb with the whole stack on chip: nothing spills or refills.
   BvhStepper<ThreeHalfPlaneTester> deep(bvh, filter, 16);

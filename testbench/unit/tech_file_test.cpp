@@ -1,0 +1,100 @@
+// The technology file: the shipped default's figures, the SRAM interpolation,
+// and errors naming the file and field.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include "datapath/datapath_ops.h"
+#include "energy/tech_file.h"
+#include "replay/replay_config.h"
+#include "trace_test_support.h"
+
+using namespace vbsim;
+using vbsim::test::TempDir;
+using vbsim::test::write_file;
+
+namespace {
+
+nlohmann::json figure(double v) { return {{"value", v}, {"source", "test"}}; }
+
+/// A technology file with every operation at `op` pJ and mm².
+nlohmann::json flat_tech(double op) {
+  nlohmann::json e, a;
+  for (const char* k : kOpKindNames) e[k] = figure(op), a[k] = figure(op);
+  e["register_bit"] = figure(0.5);
+  a["register_bit"] = figure(0.25);
+  a["sram_bit"] = figure(1e-6);
+  return {{"name", "flat"},
+          {"node_nm", 45},
+          {"energy_pj", e},
+          {"area_mm2", a},
+          {"sram_read_64bit_pj", {{{"bytes", 1024}, {"value", 4}}, {{"bytes", 4096}, {"value", 16}}}},
+          {"dram_64bit_pj", figure(1000)},
+          {"leakage_w_per_mm2", figure(0.01)}};
+}
+
+std::string error_of(const std::string& path) {
+  try {
+    load_tech_file(path);
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST_CASE("tech file: the shipped 45 nm figures", "[tech]") {
+  const TechFile t = load_tech_file(default_tech_path());
+  CHECK(t.node_nm == 45);
+  CHECK(t.op_pj[0] == 0.9);  // Horowitz: fp32 add
+  CHECK(t.op_pj[1] == 3.7);  // fp32 multiply
+  CHECK(t.op_pj[7] == 0.1);  // int32 add
+  // The three-half-plane test by hand: 22 adds x 0.9 + 20 multiplies x 3.7 +
+  // 3 divides x 23 + 16 compares x 0.0652 + 2 selects x 0.025 pJ.
+  CHECK(t.energy_pj(triangle_test_ops(TesterKind::ThreeHalfPlane)) ==
+        Approx(22 * 0.9 + 20 * 3.7 + 3 * 23.0 + 16 * 0.0652 + 2 * 0.025));
+  // SRAM: tabulated sizes exactly, between them a power law, beyond the table
+  // the last segment's, flagged.
+  bool ex = true;
+  CHECK(t.sram_64bit_pj(8192, &ex) == Approx(10));
+  CHECK_FALSE(ex);
+  CHECK(t.sram_64bit_pj(16384, &ex) == Approx(10 * std::sqrt(2.0)));
+  CHECK_FALSE(ex);
+  CHECK(t.sram_64bit_pj(1 << 20) == Approx(100));
+  CHECK(t.sram_64bit_pj(2 << 20, &ex) == Approx(100 * std::pow(2.0, std::log(5.0) / std::log(32.0))));
+  CHECK(ex);
+  CHECK(t.sram_64bit_pj(4096, &ex) == Approx(10 / std::sqrt(2.0)));
+  CHECK(ex);
+}
+
+TEST_CASE("tech file: a user's file, and bad values named by file and field", "[tech]") {
+  TempDir dir("tech_file_test");
+  const std::string path = dir.file("tech.json");
+  write_file(path, flat_tech(2).dump());
+  const TechFile t = load_tech_file(path);
+  CHECK(t.energy_pj(box_test_ops()) == 40);  // 20 operations at 2 pJ
+  CHECK(t.sram_64bit_pj(2048) == Approx(8));
+
+  const auto broken = [&](const std::function<void(nlohmann::json&)>& edit) {
+    nlohmann::json j = flat_tech(2);
+    edit(j);
+    write_file(path, j.dump());
+    return error_of(path);
+  };
+  CHECK(broken([](nlohmann::json& j) { j["energy_pj"]["fp32_mul"]["value"] = -1; }) ==
+        path + ": field 'energy_pj.fp32_mul.value': must be >= 0");
+  CHECK(broken([](nlohmann::json& j) { j["energy_pj"].erase("fp32_fma"); }) ==
+        path + ": field 'energy_pj.fp32_fma': missing");
+  CHECK(broken([](nlohmann::json& j) { j["area_mm2"]["fp32_add"]["value"] = "big"; }) ==
+        path + ": field 'area_mm2.fp32_add.value': must be a finite number");
+  CHECK(broken([](nlohmann::json& j) { j["energy_pj"]["fp64_add"] = figure(1); }) ==
+        path + ": field 'energy_pj.fp64_add': unknown field");
+  CHECK(broken([](nlohmann::json& j) { j["sram_read_64bit_pj"][1]["bytes"] = 512; }) ==
+        path + ": field 'sram_read_64bit_pj[1].bytes': sizes must be listed in ascending order, each once");
+  CHECK(broken([](nlohmann::json& j) { j["sram_read_64bit_pj"] = nlohmann::json::array(); }) ==
+        path + ": field 'sram_read_64bit_pj': must be a non-empty list of {bytes, value, source}");
+  CHECK(broken([](nlohmann::json& j) { j.erase("leakage_w_per_mm2"); }) ==
+        path + ": field 'leakage_w_per_mm2': missing");
+  CHECK(error_of(dir.file("absent.json")).find("cannot open") != std::string::npos);
+}
