@@ -18,39 +18,10 @@ import sys
 
 import numpy as np
 
-MAGIC = b"VBSIMTRB"
-LAYOUT_VERSION = 1
-PREAMBLE_BYTES = 16
-
-# One record; must match binary_trace_format.h field for field.
-RECORD_DTYPE = np.dtype([
-    ("id", "<i8"),
-    ("parent", "<i8"),           # -1: camera ray
-    ("o", "<f4", (3,)),
-    ("d", "<f4", (3,)),
-    ("tmin", "<f4"),
-    ("tmax", "<f4"),             # +inf where the text form has null
-    ("parent_prim", "<i4"),      # -1: none
-    ("parent_t", "<f4"),         # valid when flags & HAS_PARENT_T
-    ("parent_uv", "<f4", (2,)),  # valid when flags & HAS_PARENT_UV
-    ("parent_ns", "<f4", (3,)),  # valid when flags & HAS_PARENT_NS
-    ("expect_prim", "<i4"),      # valid when flags & HAS_EXPECT; -1: a miss
-    ("expect_t", "<f8"),         # valid when flags & HAS_EXPECT_T
-    ("kind", "u1"),              # index into KIND_NAMES
-    ("sign", "u1"),              # 0 or 1, valid when flags & HAS_SIGN
-    ("flags", "<u2"),
-    ("reserved", "<u4"),         # 0
-])
-assert RECORD_DTYPE.itemsize == 96
-
-HAS_PARENT_T = 1 << 0
-HAS_PARENT_UV = 1 << 1
-HAS_PARENT_NS = 1 << 2
-HAS_EXPECT = 1 << 3
-HAS_EXPECT_T = 1 << 4
-HAS_SIGN = 1 << 5
-
-KIND_NAMES = ("primary", "reflect", "refract", "diffuse", "shadow")
+# The layout's constants live in trace_writer.py, a module that stands alone.
+from trace_writer import (HAS_EXPECT, HAS_EXPECT_T, HAS_PARENT_NS, HAS_PARENT_T, HAS_PARENT_UV,  # noqa: F401
+                          HAS_SIGN, INCOMPLETE_REASONS, KIND_NAMES, LAYOUT_VERSION, MAGIC, PREAMBLE_BYTES,
+                          RECORD_DTYPE)
 
 
 class BinaryTraceError(ValueError):
@@ -122,6 +93,8 @@ def describe(record):
         ray["parent_ns"] = record["parent_ns"].tolist()
     if flags & HAS_SIGN:
         ray["sign"] = int(record["sign"])
+    if int(record["incomplete"]):
+        ray["incomplete"] = [n for k, n in enumerate(INCOMPLETE_REASONS) if int(record["incomplete"]) >> k & 1]
     if flags & HAS_EXPECT:
         ray["expect"] = {"prim": int(record["expect_prim"])}
         if flags & HAS_EXPECT_T:

@@ -47,6 +47,7 @@ CapturedScene CapturedScene::read(const std::string& path) {
     cg.geom_id = rg.geom_id;
     cg.type = rg.type;
     cg.status = static_cast<RawGeometryStatus>(rg.status);
+    cg.filters = rg.filters;
     if (cg.status == RawGeometryStatus::Captured) {
       std::vector<Vec3f> vertices(rg.vertex_count);
       for (Vec3f& v : vertices) c.take(&v, 3 * sizeof(float), "vertices");
@@ -105,6 +106,15 @@ const char* raw_geometry_status_name(RawGeometryStatus status) {
     case RawGeometryStatus::Disabled: return "disabled";
   }
   return "unknown";
+}
+
+std::string describe_geometries(const std::vector<CapturedGeometry>& geometries, bool all) {
+  std::string s;
+  for (const CapturedGeometry& g : geometries)
+    if (all || g.status != RawGeometryStatus::Captured)
+      s += fmt::format("{}geomID {} ({}: {})", s.empty() ? "" : ", ", g.geom_id, embree_geometry_type_name(g.type),
+                       raw_geometry_status_name(g.status));
+  return s.empty() ? "none" : s;
 }
 
 }  // namespace vbsim::capture

@@ -19,6 +19,7 @@ struct CapturedGeometry {
   int64_t first_triangle = -1;  ///< trace id of primitive 0 (captured geometries only)
   uint32_t triangles = 0;
   uint32_t vertices = 0;
+  uint32_t filters = 0;  ///< RawGeometryFilter bits: filter functions the application set
 };
 
 class CapturedScene {
@@ -49,5 +50,8 @@ class CapturedScene {
 const char* embree_geometry_type_name(uint32_t type);
 /// Why a geometry is not in the scene ("not triangles", "motion blur", ...).
 const char* raw_geometry_status_name(RawGeometryStatus status);
+/// "geomID 1 (instance: not triangles), geomID 3 (triangle: disabled)": every
+/// geometry whose status is not `captured` (all of them when `all`).
+std::string describe_geometries(const std::vector<CapturedGeometry>& geometries, bool all);
 
 }  // namespace vbsim::capture

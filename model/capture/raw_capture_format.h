@@ -12,8 +12,10 @@
 //                               when captured, its vertices and indices
 //   process-<pid>.txt           written when the process exits normally:
 //                               "key value" lines (calls and rays per API,
-//                               threads, scenes, commits); its absence means
-//                               the process did not finish
+//                               threads, scenes, commits, whether a shared
+//                               libembree3 was loaded, filter functions the
+//                               shim could not watch); its absence means the
+//                               process did not finish
 #pragma once
 #include <cstdint>
 
@@ -57,7 +59,13 @@ struct RawRay {
   uint32_t geom;     ///< geomID of the hit, kInvalidId for a miss or an occlusion query
   uint32_t prim;
   uint32_t inst;     ///< instID[0]: kInvalidId unless the hit is inside an instance
-  uint32_t reserved;
+  uint32_t flags;    ///< RawRayFlag bits
+};
+
+/// What else took part in a ray's call (RawRay::flags).
+enum RawRayFlag : uint32_t {
+  kRawFilterChanged = 1u << 0,   ///< a geometry filter function rejected or changed a candidate hit in the call
+  kRawContextFilter = 1u << 1,   ///< the call's intersect context carried a filter function
 };
 static_assert(sizeof(RawRay) == 96, "RawRay is a 96-byte record");
 
@@ -88,8 +96,10 @@ struct RawGeometry {
   uint32_t status;          ///< RawGeometryStatus
   uint32_t vertex_count;    ///< 0 unless captured
   uint32_t triangle_count;  ///< 0 unless captured
-  uint32_t reserved;
+  uint32_t filters;         ///< RawGeometryFilter bits: filter functions set on the geometry
 };
+
+enum RawGeometryFilter : uint32_t { kRawIntersectFilter = 1u << 0, kRawOccludedFilter = 1u << 1 };
 static_assert(sizeof(RawGeometry) == 24, "RawGeometry is 24 bytes");
 
 }  // namespace vbsim::capture

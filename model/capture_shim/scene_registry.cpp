@@ -28,6 +28,7 @@ struct Geometry {
   RTCGeometryType type = RTC_GEOMETRY_TYPE_TRIANGLE;
   unsigned time_steps = 1;
   bool enabled = true;
+  uint32_t filters = 0;  // RawGeometryFilter bits
   std::map<std::pair<int, unsigned>, Binding> buffers;  // (RTCBufferType, slot)
 };
 
@@ -64,6 +65,7 @@ void append_geometry(std::string& out, unsigned geom_id, const Geometry& g) {
   RawGeometry rg{};
   rg.geom_id = geom_id;
   rg.type = static_cast<uint32_t>(g.type);
+  rg.filters = g.filters;
   const auto vb = g.buffers.find({RTC_BUFFER_TYPE_VERTEX, 0});
   const auto ib = g.buffers.find({RTC_BUFFER_TYPE_INDEX, 0});
   const unsigned char* vdata = vb == g.buffers.end() ? nullptr : data_of(vb->second);
@@ -137,6 +139,13 @@ void on_time_steps(RTCGeometry geometry, unsigned count) {
   Registry& r = registry();
   std::lock_guard<std::mutex> lock(r.m);
   r.geometries[geometry].time_steps = count;
+}
+
+void on_filter(RTCGeometry geometry, uint32_t which, bool set) {
+  Registry& r = registry();
+  std::lock_guard<std::mutex> lock(r.m);
+  uint32_t& f = r.geometries[geometry].filters;
+  f = set ? (f | which) : (f & ~which);
 }
 
 void on_buffer(RTCGeometry geometry, RTCBufferType type, unsigned slot, RTCFormat format, const void* ptr,

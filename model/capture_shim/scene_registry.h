@@ -22,6 +22,8 @@ void on_attach(RTCScene scene, RTCGeometry geometry, unsigned geom_id);
 void on_detach(RTCScene scene, unsigned geom_id);
 void on_enable(RTCGeometry geometry, bool enabled);
 void on_time_steps(RTCGeometry geometry, unsigned count);
+/// A filter function (RawGeometryFilter `which`) set on the geometry, or cleared.
+void on_filter(RTCGeometry geometry, uint32_t which, bool set);
 /// A buffer bound to (type, slot): data at `ptr` + `offset` (shared and new buffers), else in `buffer` at `offset`.
 void on_buffer(RTCGeometry geometry, RTCBufferType type, unsigned slot, RTCFormat format, const void* ptr,
                RTCBuffer buffer, std::size_t offset, std::size_t stride, std::size_t count);

@@ -4,6 +4,8 @@
 
 #include <fmt/format.h>
 
+#include "trace/incomplete_reasons.h"
+
 namespace vbsim {
 
 namespace off = binary_trace_offset;
@@ -111,14 +113,17 @@ void encode_binary_trace_record(const TraceRay& ray, uint8_t* out) {
     out[off::sign] = static_cast<uint8_t>(ray.sign);
   }
   store_u16(out + off::flags, flags);
+  store_u32(out + off::incomplete, ray.incomplete);
 }
 
 bool decode_binary_trace_record(const uint8_t* in, TraceRay& out, TraceFieldProblem& problem) {
   uint16_t flags = load_u16(in + off::flags);
   if (flags & ~kBinaryTraceKnownFlags)
     return fail(problem, "flags", fmt::format("unknown flag bits 0x{:04x}", flags & ~kBinaryTraceKnownFlags));
-  if (load_le_u32(in + off::reserved) != 0)
-    return fail(problem, "reserved", "must be zero");
+  const uint32_t incomplete = load_le_u32(in + off::incomplete);
+  if (incomplete & ~kIncompleteKnownBits)
+    return fail(problem, "incomplete",
+                fmt::format("unknown reason bits 0x{:x}", incomplete & ~kIncompleteKnownBits));
   if ((flags & kHasExpectT) && !(flags & kHasExpect))
     return fail(problem, "expect.t", "flag has_expect_t set without has_expect");
   out = TraceRay{};
@@ -156,6 +161,7 @@ bool decode_binary_trace_record(const uint8_t* in, TraceRay& out, TraceFieldProb
     out.has_expect_t = true;
     out.expect_t = load_f64(in + off::expect_t);
   }
+  out.incomplete = incomplete;
   return true;
 }
 

@@ -40,7 +40,7 @@ constexpr std::size_t expect_t = 80;     ///< f64, valid with kHasExpectT
 constexpr std::size_t kind = 88;         ///< u8, RayKind (0 primary .. 4 shadow)
 constexpr std::size_t sign = 89;         ///< u8, 0 or 1, valid with kHasSign
 constexpr std::size_t flags = 90;        ///< u16, BinaryTraceFlag bits
-constexpr std::size_t reserved = 92;     ///< u32, must be 0
+constexpr std::size_t incomplete = 92;   ///< u32, IncompleteReason bits (0: none; was `reserved`)
 }  // namespace binary_trace_offset
 
 /// Which optional fields a record carries. A field whose bit is clear is

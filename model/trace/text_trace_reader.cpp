@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "trace/incomplete_reasons.h"
 #include "trace/trace_header_json.h"
 #include "trace/trace_json_values.h"
 
@@ -85,6 +86,18 @@ void parse_trace_ray(const json& object, TraceRay& out) {
     if (const json* t = find_field(*v, "t"); t && !t->is_null()) {
       out.has_expect_t = true;
       out.expect_t = json_double(*t, "expect.t");
+    }
+  }
+  if (const json* v = find_field(object, "incomplete")) {
+    if (!v->is_array())
+      throw TraceFieldProblem{"incomplete", fmt::format("expected an array of reasons ({}), got {}",
+                                                        incomplete_reason_names(), v->dump())};
+    for (const json& name : *v) {
+      uint32_t bit = 0;
+      if (!name.is_string() || !parse_incomplete_reason(name.get<std::string>(), bit))
+        throw TraceFieldProblem{"incomplete", fmt::format("unknown reason {} (expected one of {})", name.dump(),
+                                                          incomplete_reason_names())};
+      out.incomplete |= bit;
     }
   }
 }

@@ -56,6 +56,9 @@ struct TraceRay {
   int32_t expect_prim = -1;  ///< -1: the exact answer is a miss
   bool has_expect_t = false;
   double expect_t = 0.0;     ///< exact hit distance rounded to double
+  /// IncompleteReason bits (trace/incomplete_reasons.h): why the renderer's
+  /// answer for this ray depends on what the trace does not hold; 0 = none.
+  uint32_t incomplete = 0;
 };
 
 }  // namespace vbsim

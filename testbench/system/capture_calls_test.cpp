@@ -14,6 +14,7 @@
 
 #include "capture_test_support.h"
 #include "scene/scene.h"
+#include "trace/incomplete_reasons.h"
 #include "trace/text_trace_reader.h"
 
 using namespace vbsim;
@@ -97,7 +98,8 @@ TEST_CASE("capture agrees ray for ray with an application's own account of its E
   REQUIRE(std::system((app + " 1 " + (dir / "plain.txt").string()).c_str()) == 0);
   for (const char* threads : {"1", "4"}) {
     const auto out = dir / (std::string("t") + threads);
-    const RunResult r = run_vbsim("capture -o " + out.string() + " -- " + app + " " + threads + " " + (out / "app.txt").string());
+    const RunResult r = run_vbsim("capture --allow-partial -o " + out.string() + " -- " + app + " " + threads + " " +
+                                  (out / "app.txt").string());
     INFO(r.output);
     REQUIRE(r.exit_code == 0);
     CHECK(read_file(out / "app.txt") == read_file(dir / "plain.txt"));  // the capture changes nothing
@@ -106,7 +108,11 @@ TEST_CASE("capture agrees ray for ray with an application's own account of its E
   // Any number of threads: the same trace, scene and answers.
   CHECK(nlohmann::json::parse(read_file(dir / "t4" / "capture.json"))["threads"] == 4);
   CHECK(trace_rays_text(dir / "t1" / "trace.jsonl") == trace_rays_text(dir / "t4" / "trace.jsonl"));
-  CHECK(read_file(dir / "t1" / "scene.ply") == read_file(dir / "t4" / "scene.ply"));
+  // The same scene but for the provenance comment (which names the command line).
+  CHECK(without_provenance(read_file(dir / "t1" / "scene.ply")) == without_provenance(read_file(dir / "t4" / "scene.ply")));
+  CHECK_THAT(read_file(dir / "t1" / "scene.ply"), Catch::Contains("\ncomment vbsim-provenance {"));
+  CHECK_THAT(read_file(dir / "t1" / "trace.jsonl").substr(0, read_file(dir / "t1" / "trace.jsonl").find('\n')),
+             Catch::Contains("\"provenance\":{"));
   CHECK(read_file(dir / "t1" / "embree_hits.jsonl") == read_file(dir / "t4" / "embree_hits.jsonl"));
 
   const AppRecord app_rec = read_app_record(dir / "plain.txt");
@@ -174,6 +180,13 @@ TEST_CASE("capture agrees ray for ray with an application's own account of its E
   CHECK(linked > 200);
   CHECK(outside == 1);
   CHECK(report["hits_outside_captured_triangles"] == outside);
+  // The one ray that hit the quad mesh is marked, and only it: every occluded
+  // ray is occluded by the captured triangles too.
+  CHECK(report["incomplete"]["rays"] == 1);
+  CHECK(report["incomplete"]["by_reason"] == nlohmann::json{{"quad", 1}});
+  int64_t marked = 0;
+  for (const TraceRay& tr : trace) marked += tr.incomplete == kIncompleteQuad;
+  CHECK(marked == 1);
   const auto& geoms = report["scene"]["geometries"];
   REQUIRE(geoms.size() == 5);
   CHECK(geoms[2]["status"] == "not triangles");

@@ -57,6 +57,8 @@ TEST_CASE("capture of embree-tools' pathtracer: counts, links, an unchanged imag
   CHECK(report["calls"].size() == 2);  // the tutorial traces single rays only
   CHECK(static_cast<int64_t>(trace.size()) == intersects + occludes);
   CHECK(report["rays_in_trace"] == trace.size());
+  CHECK(report["incomplete"]["rays"] == 0);  // triangles only, no filter functions
+  CHECK_THAT(r.output, Catch::Contains("incomplete: 0 rays"));
   // One camera ray per pixel: from the camera position, unlinked, primary.
   int64_t cameras = 0, shadows = 0, children = 0;
   for (const TraceRay& tr : trace) {

@@ -255,8 +255,8 @@ TEST_CASE("binary trace: bad records name the record and field", "[trace]") {
   CHECK(e.field == "flags");
   e = error_after([&](std::string& b) { b[rec1 + 90] = static_cast<char>(kHasExpectT); });
   CHECK(e.field == "expect.t");
-  e = error_after([&](std::string& b) { b[rec1 + 95] = 1; });
-  CHECK(e.field == "reserved");
+  e = error_after([&](std::string& b) { b[rec1 + 95] = 1; });  // incomplete bit 24: unknown
+  CHECK(e.field == "incomplete");
   e = error_after([](std::string&) {}, 5);
   CHECK(e.record == 2);
   CHECK(e.field == "parent_prim");

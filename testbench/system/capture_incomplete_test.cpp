@@ -1,0 +1,174 @@
+// vbsim capture on Debian's embree-tools tutorials whose answers involve what
+// a trace cannot hold (instances, curves, subdivision, user, grid, point and
+// motion-blurred geometry, filter functions), 64x48, one thread. The capture
+// must exit non-zero unless --allow-partial, leave the image unchanged, and
+// mark every ray it cannot reproduce: replayed with method none, every ray
+// left unmarked gives Embree's answer (the test's independent account), and
+// among the marked rays some do not (the marks are not decoration).
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <set>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "capture_test_support.h"
+#include "trace/incomplete_reasons.h"
+
+using namespace vbsim;
+using namespace vbsim::test;
+
+namespace {
+
+int shell(const std::string& cmd) {
+  const int status = std::system((cmd + " > /dev/null 2>&1").c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+std::string tutorial_command(const std::string& name, const std::filesystem::path& image) {
+  return name + " --size 64 48 --threads 1 -o " + image.string();
+}
+
+struct ReplayAnswer {
+  int64_t prim = -2;  ///< -1: none
+  double t = 0.0;
+};
+
+/// The replay's answer per ray id from a --hits file.
+std::vector<ReplayAnswer> replay_answers(const std::filesystem::path& hits, std::size_t rays) {
+  std::vector<ReplayAnswer> answers(rays);
+  std::istringstream in(read_file(hits));
+  for (std::string line; std::getline(in, line);) {
+    const auto j = nlohmann::json::parse(line);
+    if (!j.contains("id")) continue;  // the provenance line
+    ReplayAnswer& a = answers.at(j["id"].get<std::size_t>());
+    a.prim = j["prim"].get<int64_t>();
+    if (a.prim >= 0) a.t = j["t"].get<double>();
+  }
+  return answers;
+}
+
+struct TutorialCapture {
+  nlohmann::json report;
+  int64_t marked = 0, marked_differing = 0, unmarked_differing = 0;
+  std::set<std::string> reasons_in_trace;
+};
+
+/// Captures `name`, checks the exit codes, the image and the marks; returns what it counted.
+TutorialCapture capture_tutorial(const std::string& name) {
+  INFO("embree-tools (" << name << ") is installed by scripts/setup.sh");
+  REQUIRE(shell("command -v " + name) == 0);
+  const auto dir = scratch_dir("capture_incomplete_" + name);
+  REQUIRE(shell(tutorial_command(name, dir / "plain.ppm")) == 0);
+
+  // Without --allow-partial: a non-zero exit that says why, the marked trace written.
+  const auto strict = dir / "strict";
+  RunResult r = run_vbsim("capture -o " + strict.string() + " -- " + tutorial_command(name, strict / "image.ppm"));
+  INFO(r.output);
+  CHECK(r.exit_code == 1);
+  CHECK_THAT(r.output, Catch::Contains("rays are incomplete") || Catch::Contains("are incomplete"));
+  CHECK_THAT(r.output, Catch::Contains("--allow-partial"));
+  CHECK(std::filesystem::exists(strict / "trace.jsonl"));
+
+  const auto out = dir / "cap";
+  r = run_vbsim("capture --allow-partial -o " + out.string() + " -- " + tutorial_command(name, out / "image.ppm"));
+  INFO(r.output);
+  REQUIRE(r.exit_code == 0);
+  CHECK_THAT(r.output, Catch::Contains("incomplete: "));
+  CHECK(read_file(out / "image.ppm") == read_file(dir / "plain.ppm"));  // the capture changes nothing
+
+  TutorialCapture c;
+  c.report = nlohmann::json::parse(read_file(out / "capture.json"));
+  const std::vector<TraceRay> trace = read_trace(out / "trace.jsonl");
+  const std::vector<nlohmann::json> embree = read_embree_hits(out / "embree_hits.jsonl", trace.size());
+  r = run_vbsim("replay -q " + (out / "trace.jsonl").string() + " --method none --hits " + (out / "replay.hits").string());
+  REQUIRE(r.exit_code == 0);
+  const std::vector<ReplayAnswer> replayed = replay_answers(out / "replay.hits", trace.size());
+  for (const TraceRay& tr : trace) {
+    const nlohmann::json& e = embree[static_cast<std::size_t>(tr.id)];
+    const ReplayAnswer& a = replayed[static_cast<std::size_t>(tr.id)];
+    const int64_t got = a.prim;
+    REQUIRE(got >= -1);
+    // The same answer: occluded or not; the same triangle, or (a hit on the
+    // shared edge of two triangles, which either tester may name) another
+    // triangle at the same distance.
+    bool same;
+    if (e.contains("occluded")) {
+      same = e["occluded"].get<bool>() == (got >= 0);
+    } else if (e.contains("not_captured") || e["prim"].get<int64_t>() < 0 || got < 0) {
+      same = !e.contains("not_captured") && e["prim"].get<int64_t>() == got;
+    } else {
+      const double t = e["t"].get<double>();
+      same = e["prim"].get<int64_t>() == got || std::fabs(a.t - t) <= 1e-6 * t;
+    }
+    if (tr.incomplete != 0) {
+      ++c.marked;
+      c.marked_differing += !same;
+      for (int k = 0; k < kIncompleteReasonCount; ++k)
+        if (tr.incomplete & (1u << k)) c.reasons_in_trace.insert(incomplete_reason_name(k));
+    } else {
+      INFO("ray " << tr.id << ": Embree " << e.dump() << ", replay " << got);
+      CHECK(same);
+      c.unmarked_differing += !same;
+    }
+  }
+  CHECK(c.report["incomplete"]["rays"] == c.marked);
+  for (const std::string& reason : c.reasons_in_trace) CHECK(c.report["incomplete"]["by_reason"][reason] > 0);
+  CHECK(c.marked > 0);
+  CHECK(c.unmarked_differing == 0);
+  return c;
+}
+
+}  // namespace
+
+TEST_CASE("capture marks the rays that hit instances, and exits non-zero without --allow-partial",
+          "[cli][capture][incomplete]") {
+  const TutorialCapture c = capture_tutorial("instanced_geometry");
+  CHECK(c.reasons_in_trace.count("instance") == 1);
+  CHECK(c.marked_differing > 0);
+  // The top scene holds the ground plane; the instances are listed with their reason.
+  CHECK(c.report["scene"]["geometries"].size() > 1);
+}
+
+TEST_CASE("capture marks the rays that filter functions may have changed", "[cli][capture][incomplete]") {
+  const TutorialCapture c = capture_tutorial("intersection_filter");
+  CHECK(c.reasons_in_trace == std::set<std::string>{"filter"});
+  CHECK(c.marked_differing > 0);
+  bool any_filter = false;
+  for (const auto& g : c.report["scene"]["geometries"]) any_filter |= g.contains("intersect_filter");
+  CHECK(any_filter);
+}
+
+TEST_CASE("capture marks the rays whose answers involve curves, points and user geometry",
+          "[cli][capture][incomplete]") {
+  CHECK(capture_tutorial("curve_geometry").reasons_in_trace.count("curve") == 1);
+  CHECK(capture_tutorial("point_geometry").reasons_in_trace.count("point") == 1);
+  CHECK(capture_tutorial("user_geometry").reasons_in_trace.count("user") == 1);
+}
+
+TEST_CASE("capture marks the rays whose answers involve subdivision surfaces and grids",
+          "[cli][capture][incomplete]") {
+  CHECK(capture_tutorial("subdivision_geometry").reasons_in_trace.count("subdivision") == 1);
+  CHECK(capture_tutorial("displacement_geometry").reasons_in_trace.count("subdivision") == 1);
+  CHECK(capture_tutorial("interpolation").reasons_in_trace.count("subdivision") == 1);
+  CHECK(capture_tutorial("lazy_geometry").reasons_in_trace.count("instance") == 1);
+  CHECK(capture_tutorial("grid_geometry").reasons_in_trace.count("grid") == 1);
+}
+
+TEST_CASE("capture marks the rays whose answers involve motion-blurred geometry", "[cli][capture][incomplete]") {
+  CHECK(capture_tutorial("motion_blur_geometry").marked > 0);
+}
+
+TEST_CASE("capture says why an application that loads Embree but traces no rays gives no trace",
+          "[cli][capture][incomplete]") {
+  REQUIRE(shell("command -v bvh_access") == 0);
+  const auto dir = scratch_dir("capture_no_rays");
+  const RunResult r = run_vbsim("capture -o " + (dir / "c").string() + " -- " + tutorial_command("bvh_access", dir / "x.ppm"));
+  INFO(r.output);
+  CHECK(r.exit_code == 1);
+  CHECK_THAT(r.output, Catch::Contains("ran with a shared libembree3") && Catch::Contains("no rays to trace"));
+  CHECK_THAT(r.output, !Catch::Contains("statically linked"));
+}
