@@ -39,6 +39,7 @@ int sc_main(int argc, char** argv) {
   add_check_command(app);
   add_capture_command(app);
   add_reintersect_command(app);
+  add_compare_reference_command(app);
   try {
     app.parse(argc, argv);
     if (app.get_subcommands().empty()) return run_default_job();

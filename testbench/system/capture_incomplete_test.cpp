@@ -13,6 +13,7 @@
 #include <set>
 #include <sstream>
 
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "capture_test_support.h"
@@ -52,6 +53,7 @@ std::vector<ReplayAnswer> replay_answers(const std::filesystem::path& hits, std:
 }
 
 struct TutorialCapture {
+  std::filesystem::path dir;  ///< the --allow-partial capture
   nlohmann::json report;
   int64_t marked = 0, marked_differing = 0, unmarked_differing = 0;
   std::set<std::string> reasons_in_trace;
@@ -81,6 +83,7 @@ TutorialCapture capture_tutorial(const std::string& name) {
   CHECK(read_file(out / "image.ppm") == read_file(dir / "plain.ppm"));  // the capture changes nothing
 
   TutorialCapture c;
+  c.dir = out;
   c.report = nlohmann::json::parse(read_file(out / "capture.json"));
   const std::vector<TraceRay> trace = read_trace(out / "trace.jsonl");
   const std::vector<nlohmann::json> embree = read_embree_hits(out / "embree_hits.jsonl", trace.size());
@@ -131,6 +134,50 @@ TEST_CASE("capture marks the rays that hit instances, and exits non-zero without
   CHECK(c.marked_differing > 0);
   // The top scene holds the ground plane; the instances are listed with their reason.
   CHECK(c.report["scene"]["geometries"].size() > 1);
+
+  // Scored, the marked rays are replayed but not judged unless asked.
+  const std::string scored = (c.dir / "scored.jsonl").string();
+  REQUIRE(run_vbsim("oracle -q " + (c.dir / "trace.jsonl").string() + " -o " + scored).exit_code == 0);
+  int64_t unscored[2] = {};
+  for (const bool ask : {false, true}) {
+    const auto stats = c.dir / (ask ? "asked.json" : "default.json");
+    const RunResult r = run_vbsim("replay -q " + scored + " --method none --stats " + stats.string() +
+                                  (ask ? " --score-incomplete" : ""));
+    INFO(r.output);
+    REQUIRE(r.exit_code == 0);
+    const auto s = nlohmann::json::parse(read_file(stats));
+    CHECK(s["incomplete"]["excluded"] == (ask ? 0 : c.marked));
+    CHECK(s["incomplete"]["scored"] == (ask ? c.marked : 0));
+    CHECK(s["rays"] == c.report["rays_in_trace"]);
+    unscored[ask] = s["verdicts"]["unscored"].get<int64_t>();
+  }
+  CHECK(unscored[0] - unscored[1] == c.marked);
+
+  // Every ray where the replay differs from the renderer's Embree, with the oracle's verdict:
+  // the same rays the test found above, all of them marked.
+  const auto hits = c.dir / "scored.hits", differences = c.dir / "differences.jsonl";
+  REQUIRE(run_vbsim("replay -q " + scored + " --method none --score-incomplete --hits " + hits.string()).exit_code == 0);
+  RunResult r = run_vbsim("compare-reference " + hits.string() + " " + (c.dir / "embree_hits.jsonl").string() +
+                          " -o " + differences.string());
+  INFO(r.output);
+  REQUIRE(r.exit_code == 0);
+  CHECK_THAT(r.output, Catch::Contains(fmt::format("{} rays;", c.report["rays_in_trace"].get<int64_t>())) &&
+                           Catch::Contains(fmt::format("; {} differ", c.marked_differing)));
+  const std::vector<TraceRay> trace = read_trace(c.dir / "trace.jsonl");
+  std::istringstream in(read_file(differences));
+  int64_t listed = 0;
+  for (std::string line; std::getline(in, line); ++listed) {
+    const auto j = nlohmann::json::parse(line);
+    CHECK(trace.at(j["id"].get<std::size_t>()).incomplete == kIncompleteInstance);
+    CHECK(j["verdict"] != "unscored");
+    CHECK(j.contains("replay"));
+    CHECK(j.contains("reference"));
+  }
+  CHECK(listed == c.marked_differing);
+  // Files of different traces are refused, naming the place.
+  r = run_vbsim("compare-reference " + hits.string() + " " + (source_dir() + "/traces/bunny/paths.jsonl"));
+  CHECK(r.exit_code == 1);
+  CHECK_THAT(r.output, Catch::Contains("paths.jsonl:"));
 }
 
 TEST_CASE("capture marks the rays that filter functions may have changed", "[cli][capture][incomplete]") {
