@@ -44,8 +44,8 @@ void run_capture(const CaptureArgs& a) {
         "{} rays of {} are incomplete: the trace cannot reproduce what Embree answered for them (counted by reason "
         "above and in capture.json). The trace is written with those rays marked; give --allow-partial to accept it",
         merged.incomplete_rays, merged.trace_path));
-  fmt::print("  next: vbsim oracle {} -o scored{}, then vbsim replay or vbsim score\n", merged.trace_path,
-             a.binary ? ".vbt" : ".jsonl");
+  fmt::print("  next: vbsim oracle {} -o scored{}, then vbsim replay or vbsim score; vbsim compare-reference compares "
+             "a replay's --hits with embree_hits.jsonl\n", merged.trace_path, a.binary ? ".vbt" : ".jsonl");
 }
 
 }  // namespace

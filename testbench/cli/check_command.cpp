@@ -10,6 +10,7 @@
 #include "commands.h"
 #include "scene/scene.h"
 #include "trace/checked_trace_source.h"
+#include "trace/incomplete_reasons.h"
 #include "trace/trace_file.h"
 
 namespace vbsim::cli {
@@ -107,7 +108,8 @@ int run_check(const CheckArgs& a) {
   const char* word = position_word(*source);
   std::vector<TraceFinding> findings;
   TraceRay ray;
-  int64_t rays = 0, unreadable = 0;
+  int64_t rays = 0, unreadable = 0, incomplete = 0;
+  int64_t incomplete_by_reason[kIncompleteReasonCount] = {};
   for (;;) {
     try {
       if (!source->next(ray)) break;
@@ -120,6 +122,10 @@ int run_check(const CheckArgs& a) {
       break;
     }
     ++rays;
+    if (ray.incomplete != 0) {
+      ++incomplete;
+      for (int k = 0; k < kIncompleteReasonCount; ++k) incomplete_by_reason[k] += (ray.incomplete >> k) & 1u;
+    }
     const int64_t pos = last_ray_position(*source, rays + unreadable);
     findings.clear();
     checker.check(ray, pos, word, findings);
@@ -142,6 +148,15 @@ int run_check(const CheckArgs& a) {
              report.counts_text());
   fmt::print("; parent data checked within the last {} rays, {} children's parents not among them\n",
              checker.window(), checker.parents_not_checked());
+  if (incomplete > 0) {  // not a fault of the trace: a statement about what it could not hold
+    std::string reasons;
+    for (int k = 0; k < kIncompleteReasonCount; ++k)
+      if (incomplete_by_reason[k] > 0)
+        reasons += fmt::format("{}{} {}", reasons.empty() ? "" : ", ", incomplete_reason_name(k), incomplete_by_reason[k]);
+    fmt::print("vbsim check: {} ray{} marked incomplete ({}): their renderer's answers involved what the trace does "
+               "not hold; replays leave them unscored unless --score-incomplete\n",
+               incomplete, incomplete == 1 ? "" : "s", reasons);
+  }
   if (checker.order_unchecked() > 0)
     fmt::print("vbsim check: {} children whose parent was not in the window could not be ordered (ids do not ascend)\n",
                checker.order_unchecked());

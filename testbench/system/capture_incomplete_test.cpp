@@ -135,6 +135,10 @@ TEST_CASE("capture marks the rays that hit instances, and exits non-zero without
   // The top scene holds the ground plane; the instances are listed with their reason.
   CHECK(c.report["scene"]["geometries"].size() > 1);
 
+  // `vbsim check` counts them by reason.
+  RunResult check = run_vbsim("check " + (c.dir / "trace.jsonl").string());
+  CHECK_THAT(check.output, Catch::Contains(fmt::format("{} rays marked incomplete (instance {})", c.marked, c.marked)));
+
   // Scored, the marked rays are replayed but not judged unless asked.
   const std::string scored = (c.dir / "scored.jsonl").string();
   REQUIRE(run_vbsim("oracle -q " + (c.dir / "trace.jsonl").string() + " -o " + scored).exit_code == 0);
