@@ -161,7 +161,7 @@ MergeResult merge_capture(const std::string& raw_dir, const std::string& out_dir
         continue;
       }
       t.eligible[i] = true;
-      outside_hits += !occluded(r) && r.geom != kInvalidId && (r.inst != kInvalidId || scene.triangle_id(r.geom, r.prim) < 0);
+      outside_hits += !occluded(r) && r.geom != kInvalidId && scene.triangle_hit(r).triangle < 0;
     }
     LinkCounts c;
     t.links = linker.link(t.rays.data(), t.rays.size(), t.eligible, c);
@@ -207,9 +207,10 @@ MergeResult merge_capture(const std::string& raw_dir, const std::string& out_dir
       tr.kind = l.kind;
       if (l.parent >= 0) {
         const RawRay& p = t.rays[static_cast<std::size_t>(l.parent)];
-        const int64_t tri = scene.triangle_id(p.geom, p.prim);
+        const TriangleHit ph = scene.triangle_hit(p);
+        const int64_t tri = ph.triangle;
         tr.parent = ids[tree.thread][static_cast<std::size_t>(l.parent)];
-        tr.set_parent_hit(static_cast<int32_t>(tri), p.hit_t, p.u, p.v);
+        tr.set_parent_hit(static_cast<int32_t>(tri), p.hit_t, ph.u, ph.v);
         tr.sign = dot(tr.d, geometric_normal(scene.triangles()[static_cast<std::size_t>(tri)])) < 0.0f ? 1 : 0;
         if (opt.strip_offsets) {
           const Vec3f hit = hit_point_ray({p.org[0], p.org[1], p.org[2]}, {p.dir[0], p.dir[1], p.dir[2]}, p.hit_t);
@@ -225,7 +226,7 @@ MergeResult merge_capture(const std::string& raw_dir, const std::string& out_dir
         for (int b = 0; b < kIncompleteReasonCount; ++b) incomplete_by_reason[b] += (tr.incomplete >> b) & 1u;
       }
       sink->write(tr);
-      hits << hit_line(tr.id, r, occluded(r) || r.inst != kInvalidId ? -1 : scene.triangle_id(r.geom, r.prim));
+      hits << hit_line(tr.id, r, scene.triangle_hit(r).triangle);
     }
   }
   sink->close();

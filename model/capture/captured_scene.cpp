@@ -6,6 +6,7 @@
 #include <iterator>
 #include <stdexcept>
 
+#include <embree3/rtcore.h>
 #include <fmt/format.h>
 
 namespace vbsim::capture {
@@ -51,25 +52,36 @@ CapturedScene CapturedScene::read(const std::string& path) {
     if (cg.status == RawGeometryStatus::Captured) {
       std::vector<Vec3f> vertices(rg.vertex_count);
       for (Vec3f& v : vertices) c.take(&v, 3 * sizeof(float), "vertices");
+      const bool quads = rg.type == RTC_GEOMETRY_TYPE_QUAD;
       cg.first_triangle = static_cast<int64_t>(s.triangles_.size());
-      cg.triangles = rg.triangle_count;
+      cg.triangles = rg.triangle_count * (quads ? 2 : 1);
       cg.vertices = rg.vertex_count;
       for (uint32_t t = 0; t < rg.triangle_count; ++t) {
-        std::array<uint32_t, 3> idx;
-        c.take(idx.data(), sizeof idx, "indices");
-        for (uint32_t i : idx)
-          if (i >= rg.vertex_count)
+        std::array<uint32_t, 4> idx{};
+        c.take(idx.data(), (quads ? 4 : 3) * sizeof(uint32_t), "indices");
+        for (int k = 0; k < (quads ? 4 : 3); ++k)
+          if (idx[k] >= rg.vertex_count)
             throw std::runtime_error(fmt::format(
-                "{}: geometry {} triangle {} names vertex {}, but the vertex buffer holds {}: Embree would read "
-                "past it", path, rg.geom_id, t, i, rg.vertex_count));
-        s.triangles_.push_back({vertices[idx[0]], vertices[idx[1]], vertices[idx[2]]});
+                "{}: geometry {} {} {} names vertex {}, but the vertex buffer holds {}: Embree would read past it",
+                path, rg.geom_id, quads ? "quad" : "triangle", t, idx[k], rg.vertex_count));
+        const Vec3f v0 = vertices[idx[0]], v1 = vertices[idx[1]], v2 = vertices[idx[2]];
+        if (!quads) {
+          s.triangles_.push_back({v0, v1, v2});
+          continue;
+        }
+        // Embree's split of quad (v0, v1, v2, v3): triangles (v0, v1, v3) and (v2, v3, v1).
+        const Vec3f v3 = vertices[idx[3]];
+        s.triangles_.push_back({v0, v1, v3});
+        s.triangles_.push_back({v2, v3, v1});
       }
       if (s.first_by_geom_.size() <= cg.geom_id) {
         s.first_by_geom_.resize(cg.geom_id + 1, -1);
         s.count_by_geom_.resize(cg.geom_id + 1, 0);
+        s.quads_by_geom_.resize(cg.geom_id + 1, false);
       }
       s.first_by_geom_[cg.geom_id] = cg.first_triangle;
-      s.count_by_geom_[cg.geom_id] = cg.triangles;
+      s.count_by_geom_[cg.geom_id] = rg.triangle_count;
+      s.quads_by_geom_[cg.geom_id] = quads;
     }
     s.geometries_.push_back(cg);
   }
@@ -77,10 +89,26 @@ CapturedScene CapturedScene::read(const std::string& path) {
   return s;
 }
 
-int64_t CapturedScene::triangle_id(uint32_t geom_id, uint32_t prim_id) const {
+TriangleHit CapturedScene::triangle_hit(uint32_t geom_id, uint32_t prim_id, float u, float v) const {
+  TriangleHit h;
   if (geom_id >= first_by_geom_.size() || first_by_geom_[geom_id] < 0 || prim_id >= count_by_geom_[geom_id])
-    return -1;
-  return first_by_geom_[geom_id] + prim_id;
+    return h;
+  if (!quads_by_geom_[geom_id]) {
+    h.triangle = first_by_geom_[geom_id] + prim_id;
+    h.u = u, h.v = v;
+  } else if (u + v <= 1.0f) {  // the first triangle (v0, v1, v3): Embree's u, v are its barycentrics
+    h.triangle = first_by_geom_[geom_id] + 2 * int64_t{prim_id};
+    h.u = u, h.v = v;
+  } else {  // the second (v2, v3, v1): Embree reports 1 - u', 1 - v' of its barycentrics u', v'
+    h.triangle = first_by_geom_[geom_id] + 2 * int64_t{prim_id} + 1;
+    h.u = 1.0f - u, h.v = 1.0f - v;
+  }
+  return h;
+}
+
+TriangleHit CapturedScene::triangle_hit(const RawRay& r) const {
+  if (r.op != static_cast<uint16_t>(RawOp::Intersect) || r.geom == kInvalidId || r.inst != kInvalidId) return {};
+  return triangle_hit(r.geom, r.prim, r.u, r.v);
 }
 
 const char* embree_geometry_type_name(uint32_t type) {

@@ -53,7 +53,7 @@ uint32_t IncompleteRayJudge::reasons(const RawRay& r) const {
   if (r.op == static_cast<uint16_t>(RawOp::Intersect)) {
     if (r.geom == kInvalidId) return bits;  // a miss: nothing was hit, captured or not
     if (r.inst != kInvalidId) return bits | kIncompleteInstance;
-    if (scene_.triangle_id(r.geom, r.prim) >= 0) return bits;
+    if (scene_.triangle_hit(r).triangle >= 0) return bits;
     const uint32_t g = r.geom < reason_by_geom_.size() ? reason_by_geom_[r.geom] : 0;
     return bits | (g != 0 ? g : kIncompleteOtherGeometry);
   }

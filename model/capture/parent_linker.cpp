@@ -128,7 +128,7 @@ std::vector<RayLink> ParentLinker::link(const RawRay* rays, std::size_t n, const
     }
     ++counts.by_kind[static_cast<int>(l.kind)];
     if (is_hit(r)) {
-      const int64_t tri = scene_.triangle_id(r.geom, r.prim);
+      const int64_t tri = scene_.triangle_hit(r).triangle;
       if (tri >= 0) {
         recent.push_back(candidate(i, r, tri, scene_.triangles()[static_cast<std::size_t>(tri)]));
         if (recent.size() > rules_.history) recent.pop_front();

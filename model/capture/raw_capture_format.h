@@ -82,11 +82,11 @@ static_assert(sizeof(RawSceneHeader) == 24, "RawSceneHeader is 24 bytes");
 
 /// Why a geometry's triangles are (not) in the snapshot.
 enum class RawGeometryStatus : uint32_t {
-  Captured = 0,       ///< triangles: vertex_count float3, then triangle_count uint3 follow
-  NotTriangles = 1,   ///< another geometry type (quads, curves, instances, user, ...)
+  Captured = 0,       ///< vertex_count float3, then triangle_count primitives: uint3 (triangles) or uint4 (quads)
+  NotTriangles = 1,   ///< another geometry type than triangles and quads (curves, instances, user, ...)
   MotionBlur = 2,     ///< more than one time step
   MissingBuffer = 3,  ///< no vertex or index buffer set
-  BadFormat = 4,      ///< a buffer format other than FLOAT3 vertices and UINT3 indices
+  BadFormat = 4,      ///< a buffer format other than FLOAT3 vertices and UINT3 (quads: UINT4) indices
   Disabled = 5,       ///< rtcDisableGeometry: Embree does not trace it
 };
 
@@ -95,7 +95,7 @@ struct RawGeometry {
   uint32_t type;            ///< RTCGeometryType
   uint32_t status;          ///< RawGeometryStatus
   uint32_t vertex_count;    ///< 0 unless captured
-  uint32_t triangle_count;  ///< 0 unless captured
+  uint32_t triangle_count;  ///< primitives (triangles or quads); 0 unless captured
   uint32_t filters;         ///< RawGeometryFilter bits: filter functions set on the geometry
 };
 

@@ -70,12 +70,13 @@ void append_geometry(std::string& out, unsigned geom_id, const Geometry& g) {
   const auto ib = g.buffers.find({RTC_BUFFER_TYPE_INDEX, 0});
   const unsigned char* vdata = vb == g.buffers.end() ? nullptr : data_of(vb->second);
   const unsigned char* idata = ib == g.buffers.end() ? nullptr : data_of(ib->second);
+  const bool quads = g.type == RTC_GEOMETRY_TYPE_QUAD;  // each quad: 4 indices, 2 triangles as Embree splits it
   RawGeometryStatus status = RawGeometryStatus::Captured;
-  if (g.type != RTC_GEOMETRY_TYPE_TRIANGLE) status = RawGeometryStatus::NotTriangles;
+  if (g.type != RTC_GEOMETRY_TYPE_TRIANGLE && !quads) status = RawGeometryStatus::NotTriangles;
   else if (!g.enabled) status = RawGeometryStatus::Disabled;
   else if (g.time_steps != 1) status = RawGeometryStatus::MotionBlur;
   else if (!vdata || !idata) status = RawGeometryStatus::MissingBuffer;
-  else if (vb->second.format != RTC_FORMAT_FLOAT3 || ib->second.format != RTC_FORMAT_UINT3)
+  else if (vb->second.format != RTC_FORMAT_FLOAT3 || ib->second.format != (quads ? RTC_FORMAT_UINT4 : RTC_FORMAT_UINT3))
     status = RawGeometryStatus::BadFormat;
   rg.status = static_cast<uint32_t>(status);
   if (status == RawGeometryStatus::Captured) {
@@ -88,7 +89,7 @@ void append_geometry(std::string& out, unsigned geom_id, const Geometry& g) {
   for (std::size_t i = 0; i < rg.vertex_count; ++i)
     out.append(reinterpret_cast<const char*>(vdata + i * vb->second.stride), 3 * sizeof(float));
   for (std::size_t i = 0; i < rg.triangle_count; ++i)
-    out.append(reinterpret_cast<const char*>(idata + i * ib->second.stride), 3 * sizeof(uint32_t));
+    out.append(reinterpret_cast<const char*>(idata + i * ib->second.stride), (quads ? 4 : 3) * sizeof(uint32_t));
 }
 
 thread_local struct {
