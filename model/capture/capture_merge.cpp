@@ -127,7 +127,10 @@ MergeResult merge_capture(const std::string& raw_dir, const std::string& out_dir
   const ProcessFiles& files = processes.at(pid);
   if (key.second == 0 || !files.scenes.count(key))
     throw std::runtime_error(fmt::format("process {} traced rays against scene {} before committing it", pid, key.first));
-  const CapturedScene scene = CapturedScene::read(files.scenes.at(key));
+  const CapturedScene scene = CapturedScene::read(files.scenes.at(key), [&files](uint32_t s, uint32_t c) {
+    const auto it = files.scenes.find({s, c});
+    return it == files.scenes.end() ? std::string() : it->second;
+  });
   if (scene.triangles().empty())
     throw std::runtime_error(fmt::format(
         "the traced scene (scene {}, commit {}) has no triangle geometry that could be captured, so there is no "
@@ -284,6 +287,8 @@ MergeResult merge_capture(const std::string& raw_dir, const std::string& out_dir
       {"hits_outside_captured_triangles", outside_hits},
       {"incomplete", {{"rays", incomplete}, {"by_reason", by_reason},
                       {"unwatched_filter_functions", unwatched_filters}}},
+      {"instances", {{"flattened", scene.has_instances()}, {"rays_checked", judge.flattened_checked()},
+                     {"flattened_answer_differs", judge.flattened_differs()}}},
       {"links", {{"at_hit_point", links.at_hit_point}, {"normal_offset", links.normal_offset},
                  {"max_normal_offset", links.max_offset}, {"unlinked_intersect", links.unlinked_intersect},
                  {"unlinked_occluded", links.unlinked_occluded}}},
@@ -317,6 +322,10 @@ MergeResult merge_capture(const std::string& raw_dir, const std::string& out_dir
       scene.triangles().size(), scene_path.string(), links.at_hit_point, links.normal_offset, links.max_offset,
       links.unlinked_intersect, links.unlinked_occluded, other_process_rays, other_scene, invalid, outside_hits,
       describe_geometries(scene.geometries(), false));
+  if (scene.has_instances())
+    out.summary += fmt::format(
+        "  instances: flattened into world-space triangles; {} of {} rays answered otherwise on them than by Embree's "
+        "instance-space test (marked instance)\n", judge.flattened_differs(), judge.flattened_checked());
   if (incomplete > 0)
     out.summary += fmt::format(
         "  incomplete: {} of {} rays ({}): Embree's answer involves geometry or filter functions the trace does "

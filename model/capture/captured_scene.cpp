@@ -29,7 +29,19 @@ struct Cursor {
 
 }  // namespace
 
-CapturedScene CapturedScene::read(const std::string& path) {
+namespace {
+
+/// `p` under the row-major 3x4 transform `m`, in double, rounded once to float32.
+Vec3f transformed(const float m[12], Vec3f p) {
+  const double x = p.x, y = p.y, z = p.z;
+  return {static_cast<float>(double(m[0]) * x + double(m[1]) * y + double(m[2]) * z + double(m[3])),
+          static_cast<float>(double(m[4]) * x + double(m[5]) * y + double(m[6]) * z + double(m[7])),
+          static_cast<float>(double(m[8]) * x + double(m[9]) * y + double(m[10]) * z + double(m[11]))};
+}
+
+}  // namespace
+
+CapturedScene CapturedScene::read(const std::string& path, const SnapshotFinder& find) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::runtime_error(fmt::format("{}: cannot open the scene snapshot", path));
   const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -49,7 +61,34 @@ CapturedScene CapturedScene::read(const std::string& path) {
     cg.type = rg.type;
     cg.status = static_cast<RawGeometryStatus>(rg.status);
     cg.filters = rg.filters;
-    if (cg.status == RawGeometryStatus::Captured) {
+    if (cg.status == RawGeometryStatus::Captured && rg.type == RTC_GEOMETRY_TYPE_INSTANCE) {
+      RawInstance ri;
+      c.take(&ri, sizeof ri, "an instance");
+      const std::string child_path = find ? find(ri.scene, ri.commit) : std::string();
+      if (child_path.empty()) {
+        cg.status = RawGeometryStatus::MissingBuffer;
+      } else {
+        auto child = std::make_shared<const CapturedScene>(read(child_path, find));
+        if (child->has_instances_) {
+          cg.status = RawGeometryStatus::NestedInstance;
+        } else {
+          cg.first_triangle = static_cast<int64_t>(s.triangles_.size());
+          cg.triangles = static_cast<uint32_t>(child->triangles_.size());
+          for (const Triangle& t : child->triangles_)
+            s.triangles_.push_back({transformed(ri.xfm, t.v0), transformed(ri.xfm, t.v1), transformed(ri.xfm, t.v2)});
+          if (s.first_by_geom_.size() <= cg.geom_id) {
+            s.first_by_geom_.resize(cg.geom_id + 1, -1);
+            s.count_by_geom_.resize(cg.geom_id + 1, 0);
+            s.quads_by_geom_.resize(cg.geom_id + 1, false);
+          }
+          s.first_by_geom_[cg.geom_id] = cg.first_triangle;
+          s.count_by_geom_[cg.geom_id] = 0;  // no primitive of its own: hits inside map through the instanced scene
+          if (s.instanced_by_geom_.size() <= cg.geom_id) s.instanced_by_geom_.resize(cg.geom_id + 1);
+          s.instanced_by_geom_[cg.geom_id] = std::move(child);
+          s.has_instances_ = true;
+        }
+      }
+    } else if (cg.status == RawGeometryStatus::Captured) {
       std::vector<Vec3f> vertices(rg.vertex_count);
       for (Vec3f& v : vertices) c.take(&v, 3 * sizeof(float), "vertices");
       const bool quads = rg.type == RTC_GEOMETRY_TYPE_QUAD;
@@ -107,8 +146,12 @@ TriangleHit CapturedScene::triangle_hit(uint32_t geom_id, uint32_t prim_id, floa
 }
 
 TriangleHit CapturedScene::triangle_hit(const RawRay& r) const {
-  if (r.op != static_cast<uint16_t>(RawOp::Intersect) || r.geom == kInvalidId || r.inst != kInvalidId) return {};
-  return triangle_hit(r.geom, r.prim, r.u, r.v);
+  if (r.op != static_cast<uint16_t>(RawOp::Intersect) || r.geom == kInvalidId) return {};
+  if (r.inst == kInvalidId) return triangle_hit(r.geom, r.prim, r.u, r.v);
+  if (r.inst >= instanced_by_geom_.size() || !instanced_by_geom_[r.inst]) return {};
+  TriangleHit h = instanced_by_geom_[r.inst]->triangle_hit(r.geom, r.prim, r.u, r.v);
+  if (h.triangle >= 0) h.triangle += first_by_geom_[r.inst];
+  return h;
 }
 
 const char* embree_geometry_type_name(uint32_t type) {
@@ -129,9 +172,10 @@ const char* raw_geometry_status_name(RawGeometryStatus status) {
     case RawGeometryStatus::Captured: return "captured";
     case RawGeometryStatus::NotTriangles: return "not triangles";
     case RawGeometryStatus::MotionBlur: return "motion blur";
-    case RawGeometryStatus::MissingBuffer: return "no vertex or index buffer";
+    case RawGeometryStatus::MissingBuffer: return "no vertex or index buffer (an instance: no committed scene or transform)";
     case RawGeometryStatus::BadFormat: return "buffer format other than FLOAT3 / UINT3";
     case RawGeometryStatus::Disabled: return "disabled";
+    case RawGeometryStatus::NestedInstance: return "instance of a scene with instances";
   }
   return "unknown";
 }

@@ -6,6 +6,8 @@
 // the two triangles Embree splits a quad into.
 #pragma once
 #include <cstdint>
+#include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -31,12 +33,19 @@ struct TriangleHit {
   float u = 0.0f, v = 0.0f;
 };
 
+/// The snapshot file of (scene ordinal, commit) of the same process; empty when there is none.
+using SnapshotFinder = std::function<std::string(uint32_t scene, uint32_t commit)>;
+
 class CapturedScene {
  public:
   /// Reads a snapshot file (scene-<pid>-<s>-<c>.bin). Throws std::runtime_error
   /// naming the file on a bad magic, a truncated file, or an index that points
-  /// past its geometry's vertex buffer.
-  static CapturedScene read(const std::string& path);
+  /// past its geometry's vertex buffer. An instance is flattened: the
+  /// triangles of the scene it instances (read through `find`), each vertex
+  /// transformed in double and rounded once to float32, take its place in the
+  /// numbering. An instance of a scene that itself holds instances is not
+  /// (NestedInstance: Embree reports only the outer instance of a hit here).
+  static CapturedScene read(const std::string& path, const SnapshotFinder& find = {});
 
   /// Embree's hit (geomID, primID, u, v) as the trace names it; triangle -1
   /// when that geometry was not captured (or the primitive is out of range).
@@ -44,9 +53,12 @@ class CapturedScene {
   /// split; on the diagonal both triangles hold the point), else in the
   /// second, whose barycentrics are 1 - u, 1 - v.
   TriangleHit triangle_hit(uint32_t geom_id, uint32_t prim_id, float u, float v) const;
-  /// The hit of an intersect record; triangle -1 for a miss, an occlusion
-  /// query, a hit inside an instance, or one on geometry not captured.
+  /// The hit of an intersect record (inside an instance: on the instance's
+  /// flattened triangles); triangle -1 for a miss, an occlusion query, or a
+  /// hit on geometry not captured.
   TriangleHit triangle_hit(const RawRay& r) const;
+  /// Whether any instance was flattened into the scene.
+  bool has_instances() const { return has_instances_; }
 
   const std::vector<Triangle>& triangles() const { return triangles_; }
   const std::vector<CapturedGeometry>& geometries() const { return geometries_; }
@@ -59,6 +71,8 @@ class CapturedScene {
   std::vector<int64_t> first_by_geom_;        ///< geomID -> first triangle, -1 when not captured
   std::vector<uint32_t> count_by_geom_;       ///< geomID -> its primitives (triangles or quads)
   std::vector<bool> quads_by_geom_;           ///< geomID -> a quad geometry
+  std::vector<std::shared_ptr<const CapturedScene>> instanced_by_geom_;  ///< geomID -> the scene an instance flattens
+  bool has_instances_ = false;
   std::vector<Triangle> triangles_;
 };
 

@@ -12,8 +12,12 @@
 //     context carried a filter function (the shim does not see what those
 //     decided), or every query when the shim could not watch all filter
 //     functions.
-// A miss, a hit on a captured triangle (Embree reports the closest hit) and an
-// unoccluded shadow ray are what the captured scene gives, filters aside.
+//   - in a scene with instances (flattened into world-space triangles), any
+//     query whose answer on the flattened triangles (Embree's robust test on
+//     them) is not the application's: the flattened float arithmetic is not
+//     Embree's instance-space test.
+// Otherwise a miss, a hit on a captured triangle (Embree reports the closest
+// hit) and an unoccluded shadow ray are what the captured scene gives.
 #pragma once
 #include <cstdint>
 #include <memory>
@@ -40,6 +44,11 @@ class IncompleteRayJudge {
 
   /// Reasons of every geometry of the scene outside the trace.
   uint32_t uncaptured_kinds() const { return uncaptured_kinds_; }
+  /// In a scene with flattened instances: the rays checked against Embree's
+  /// answer on the flattened triangles, and those whose answer differed
+  /// (marked `instance`).
+  int64_t flattened_checked() const { return flattened_checked_; }
+  int64_t flattened_differs() const { return flattened_differs_; }
 
  private:
   const CapturedScene& scene_;
@@ -47,6 +56,7 @@ class IncompleteRayJudge {
   uint32_t uncaptured_kinds_ = 0;
   std::vector<uint32_t> reason_by_geom_;           ///< geomID -> reason bit
   std::unique_ptr<EmbreeReference> captured_only_;  ///< the captured triangles, when anything is outside
+  mutable int64_t flattened_checked_ = 0, flattened_differs_ = 0;
 };
 
 }  // namespace vbsim::capture

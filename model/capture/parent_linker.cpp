@@ -39,7 +39,7 @@ Vec3f org_of(const RawRay& r) { return {r.org[0], r.org[1], r.org[2]}; }
 Vec3f dir_of(const RawRay& r) { return {r.dir[0], r.dir[1], r.dir[2]}; }
 
 bool is_hit(const RawRay& r) {
-  return r.op == static_cast<uint16_t>(RawOp::Intersect) && r.geom != kInvalidId && r.inst == kInvalidId;
+  return r.op == static_cast<uint16_t>(RawOp::Intersect) && r.geom != kInvalidId;  // triangle_hit maps instances
 }
 
 }  // namespace

@@ -82,12 +82,14 @@ static_assert(sizeof(RawSceneHeader) == 24, "RawSceneHeader is 24 bytes");
 
 /// Why a geometry's triangles are (not) in the snapshot.
 enum class RawGeometryStatus : uint32_t {
-  Captured = 0,       ///< vertex_count float3, then triangle_count primitives: uint3 (triangles) or uint4 (quads)
+  Captured = 0,       ///< vertex_count float3, then triangle_count primitives: uint3 (triangles) or uint4
+                      ///< (quads); for an instance a RawInstance instead
   NotTriangles = 1,   ///< another geometry type than triangles and quads (curves, instances, user, ...)
   MotionBlur = 2,     ///< more than one time step
   MissingBuffer = 3,  ///< no vertex or index buffer set
   BadFormat = 4,      ///< a buffer format other than FLOAT3 vertices and UINT3 (quads: UINT4) indices
   Disabled = 5,       ///< rtcDisableGeometry: Embree does not trace it
+  NestedInstance = 6, ///< (vbsim's reading only) an instance of a scene that holds instances
 };
 
 struct RawGeometry {
@@ -98,6 +100,14 @@ struct RawGeometry {
   uint32_t triangle_count;  ///< primitives (triangles or quads); 0 unless captured
   uint32_t filters;         ///< RawGeometryFilter bits: filter functions set on the geometry
 };
+
+/// What follows a captured instance's RawGeometry: the scene it instances and its transform.
+struct RawInstance {
+  uint32_t scene;    ///< ordinal of the instanced scene in the process
+  uint32_t commit;   ///< that scene's snapshot when the instancing scene was committed
+  float xfm[12];     ///< row-major 3x4: world = M object (instance_transform.h)
+};
+static_assert(sizeof(RawInstance) == 56, "RawInstance is 56 bytes");
 
 enum RawGeometryFilter : uint32_t { kRawIntersectFilter = 1u << 0, kRawOccludedFilter = 1u << 1 };
 static_assert(sizeof(RawGeometry) == 24, "RawGeometry is 24 bytes");
