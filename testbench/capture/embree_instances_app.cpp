@@ -22,20 +22,22 @@ const unsigned kQuadIndex[4] = {0, 1, 2, 3};
 const float kGround[3][3] = {{-10, -10, -1}, {30, -10, -1}, {-10, 30, -1}};
 const unsigned kGroundIndex[3] = {0, 1, 2};
 
+/// Attaches a triangle (or quad) mesh over shared buffers to `scene`.
+void attach_mesh(RTCDevice device, RTCScene scene, bool quads, const void* vertices, unsigned nv,
+                 const void* indices, unsigned n) {
+  RTCGeometry g = rtcNewGeometry(device, quads ? RTC_GEOMETRY_TYPE_QUAD : RTC_GEOMETRY_TYPE_TRIANGLE);
+  rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, vertices, 0, 12, nv);
+  rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, quads ? RTC_FORMAT_UINT4 : RTC_FORMAT_UINT3, indices, 0,
+                             quads ? 16 : 12, n);
+  rtcCommitGeometry(g);
+  rtcAttachGeometry(scene, g);
+  rtcReleaseGeometry(g);
+}
+
 RTCScene child_scene(RTCDevice device) {
   RTCScene s = rtcNewScene(device);
-  RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-  rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, kSquare, 0, 12, 4);
-  rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, kSquareTriangles, 0, 12, 2);
-  rtcCommitGeometry(g);
-  rtcAttachGeometry(s, g);
-  rtcReleaseGeometry(g);
-  g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_QUAD);
-  rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, kQuad, 0, 12, 4);
-  rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT4, kQuadIndex, 0, 16, 1);
-  rtcCommitGeometry(g);
-  rtcAttachGeometry(s, g);
-  rtcReleaseGeometry(g);
+  attach_mesh(device, s, false, kSquare, 4, kSquareTriangles, 2);
+  attach_mesh(device, s, true, kQuad, 4, kQuadIndex, 1);
   rtcCommitScene(s);
   return s;
 }
@@ -57,12 +59,7 @@ int main(int argc, char** argv) {
   RTCDevice device = rtcNewDevice(nullptr);
   RTCScene child = child_scene(device);
   RTCScene top = rtcNewScene(device);
-  RTCGeometry ground = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-  rtcSetSharedGeometryBuffer(ground, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, kGround, 0, 12, 3);
-  rtcSetSharedGeometryBuffer(ground, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, kGroundIndex, 0, 12, 1);
-  rtcCommitGeometry(ground);
-  rtcAttachGeometry(top, ground);
-  rtcReleaseGeometry(ground);
+  attach_mesh(device, top, false, kGround, 3, kGroundIndex, 1);
   const RTCFormat formats[4] = {RTC_FORMAT_FLOAT3X4_ROW_MAJOR, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR,
                                 RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, RTC_FORMAT_FLOAT4X4_ROW_MAJOR};
   const char* names[4] = {"float3x4_row_major", "float3x4_column_major", "float4x4_column_major",
