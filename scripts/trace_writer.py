@@ -54,6 +54,15 @@ RECORD_DTYPE = np.dtype([
     ("incomplete", "<u4"),       # INCOMPLETE_REASONS bits, 0: none (docs/trace-binary.md)
 ])
 assert RECORD_DTYPE.itemsize == 96
+# Layout 2 (a header with a "reference"): the same record, then the renderer's own answer.
+REFERENCE_LAYOUT_VERSION = 2
+REFERENCE_RECORD_DTYPE = np.dtype(RECORD_DTYPE.descr + [
+    ("reference_prim", "<i4"),   # valid when flags & HAS_REFERENCE; -1: none, -2: occluded
+    ("reference_t", "<f4"),      # valid when flags & HAS_REFERENCE_T
+])
+assert REFERENCE_RECORD_DTYPE.itemsize == 104
+HAS_REFERENCE = 1 << 6
+HAS_REFERENCE_T = 1 << 7
 
 HAS_PARENT_T = 1 << 0
 HAS_PARENT_UV = 1 << 1

@@ -93,6 +93,22 @@ std::string hit_line(int64_t id, const RawRay& r, int64_t triangle) {
   return s + "}\n";
 }
 
+/// Embree's answer as the trace's `reference`: occluded or not, a miss, or a
+/// hit on a trace triangle; none for a hit on geometry the trace does not hold.
+void set_reference(TraceRay& tr, const RawRay& r, int64_t triangle) {
+  if (occluded(r)) {
+    tr.has_reference = true;
+    tr.reference_prim = std::isinf(r.hit_t) && r.hit_t < 0 ? kReferenceOccluded : -1;
+  } else if (r.geom == kInvalidId) {
+    tr.has_reference = true;
+    tr.reference_prim = -1;
+  } else if (triangle >= 0) {
+    tr.has_reference = tr.has_reference_t = true;
+    tr.reference_prim = static_cast<int32_t>(triangle);
+    tr.reference_t = r.hit_t;
+  }
+}
+
 void rename_into_place(const fs::path& from, const fs::path& to) {
   std::error_code ec;
   fs::rename(from, to, ec);
@@ -187,6 +203,7 @@ MergeResult merge_capture(const std::string& raw_dir, const std::string& out_dir
   header.scene_path = scene_path.string();
   header.generator = "vbsim capture";
   header.provenance = opt.provenance;
+  header.reference = "Embree in the capturing application (each ray's own answer, as in embree_hits.jsonl)";
   header.description = fmt::format(
       "Embree ray queries of `{}` ({} thread{}): {}; parents linked by origin (capture.json)", join(opt.command),
       threads.size(), threads.size() == 1 ? "" : "s",
@@ -224,6 +241,7 @@ MergeResult merge_capture(const std::string& raw_dir, const std::string& out_dir
         }
       }
       tr.incomplete = judge.reasons(r);
+      set_reference(tr, r, scene.triangle_hit(r).triangle);
       if (tr.incomplete != 0) {
         ++incomplete;
         for (int b = 0; b < kIncompleteReasonCount; ++b) incomplete_by_reason[b] += (tr.incomplete >> b) & 1u;

@@ -7,6 +7,8 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "trace/trace_file.h"
+
 namespace vbsim::capture {
 
 namespace {
@@ -50,11 +52,53 @@ class JsonLines {
   int64_t line_ = 0;
 };
 
+/// The reference answers, one JSON object per ray as embree_hits.jsonl has
+/// them, from that file or from a trace whose rays carry `reference`.
+class ReferenceAnswers {
+ public:
+  explicit ReferenceAnswers(const std::string& path) : path_(path) {
+    std::ifstream in(path, std::ios::binary);
+    std::string first;
+    std::getline(in, first);
+    if (first.rfind("VBSIMTRB", 0) == 0 || first.find("\"vbsim-trace\"") != std::string::npos)
+      trace_ = open_trace(path);
+    else
+      lines_ = std::make_unique<JsonLines>(path);
+  }
+  bool next(json& out) {
+    if (lines_) return lines_->next(out);
+    TraceRay tr;
+    if (!trace_->next(tr)) return false;
+    out = {{"id", tr.id}};
+    if (!tr.has_reference && tr.incomplete != 0) out["not_captured"] = true;  // a hit outside the trace
+    else if (!tr.has_reference) fail(fmt::format("ray {} carries no reference answer", tr.id));
+    else if (tr.reference_prim == kReferenceOccluded || (tr.kind == RayKind::Shadow && tr.reference_prim == -1))
+      out["occluded"] = tr.reference_prim == kReferenceOccluded;
+    else out["prim"] = tr.reference_prim;
+    if (tr.has_reference_t) out["t"] = tr.reference_t;
+    return true;
+  }
+  [[noreturn]] void fail(const std::string& message) const {
+    if (lines_) lines_->fail(message);
+    throw trace_->error_at_last_ray("reference", message);
+  }
+  int64_t integer(const json& j, const char* key) const {
+    if (lines_) return lines_->integer(j, key);
+    return j.at(key).get<int64_t>();
+  }
+
+ private:
+  std::string path_;
+  std::unique_ptr<JsonLines> lines_;
+  std::unique_ptr<TraceSource> trace_;
+};
+
 }  // namespace
 
 ReferenceComparison compare_with_reference(const std::string& hits_path, const std::string& reference_path,
                                            std::ostream* differences) {
-  JsonLines hits(hits_path), reference(reference_path);
+  JsonLines hits(hits_path);
+  ReferenceAnswers reference(reference_path);
   ReferenceComparison c;
   json h, r;
   if (!hits.next(h) || h.value("format", "") != "vbsim-hits")

@@ -1,6 +1,6 @@
 // A replay against the capturing renderer's own answers: a `vbsim replay
-// --hits` file compared ray by ray with a capture's embree_hits.jsonl (both in
-// trace order, one line per ray), streamed. For every ray where the replay's
+// --hits` file compared ray by ray with a capture's embree_hits.jsonl, or with
+// the `reference` answers a trace carries (both in trace order), streamed. For every ray where the replay's
 // answer differs from Embree's it gives both answers and the replay's verdict
 // from the oracle (the trace's `expect`): with a scored trace this says, per
 // ray, whether the hardware would have rendered what the renderer rendered,
@@ -23,7 +23,8 @@ struct ReferenceComparison {
   std::map<std::string, int64_t> differ_by_verdict;  ///< the replay's verdict ("unscored" without expect)
 };
 
-/// Compares the files; writes one JSON line per differing ray to `differences`
+/// Compares the files (`reference_path`: embree_hits.jsonl, or a trace whose
+/// rays carry `reference`); writes one JSON line per differing ray to `differences`
 /// (may be null): {"id", "verdict", "replay": {"prim", "t"}, "reference": {...}}.
 /// Throws std::runtime_error naming the file and line on a malformed line, a
 /// stopped replay's hits, or ids that do not pair up.

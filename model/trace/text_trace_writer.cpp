@@ -63,6 +63,20 @@ void append_trace_ray_json(fmt::memory_buffer& out, const TraceRay& ray) {
     }
     out.push_back('}');
   }
+  if (ray.has_reference) {
+    if (ray.reference_prim == kReferenceOccluded) {
+      text(out, ",\"reference\":{\"occluded\":true}");
+    } else if (ray.reference_prim == -1 && ray.kind == RayKind::Shadow) {
+      text(out, ",\"reference\":{\"occluded\":false}");
+    } else {
+      fmt::format_to(it, ",\"reference\":{{\"prim\":{}", ray.reference_prim);
+      if (ray.has_reference_t) {
+        text(out, ",\"t\":");
+        append_json_float(out, ray.reference_t);
+      }
+      out.push_back('}');
+    }
+  }
   if (ray.incomplete != 0) {
     text(out, ",\"incomplete\":[");
     bool first = true;

@@ -73,6 +73,16 @@ bool check_trace_ray(const TraceRay& ray, int32_t triangle_count, TraceFieldProb
         return fail(problem, "expect.t", fmt::format("{} is not finite", ray.expect_t));
     }
   }
+  if (ray.has_reference_t && !ray.has_reference)
+    return fail(problem, "reference.t", "given without a reference answer");
+  if (ray.has_reference) {
+    if (ray.reference_prim < kReferenceOccluded)
+      return fail(problem, "reference.prim", fmt::format("{} is below -1", ray.reference_prim));
+    if (ray.reference_prim >= 0 && !check_prim(ray.reference_prim, triangle_count, "reference.prim", problem))
+      return false;
+    if (ray.has_reference_t && (ray.reference_prim < 0 || !std::isfinite(ray.reference_t)))
+      return fail(problem, "reference.t", "a hit distance needs a hit (prim >= 0) and must be finite");
+  }
   if (ray.incomplete & ~kIncompleteKnownBits)
     return fail(problem, "incomplete",
                 fmt::format("unknown reason bits 0x{:x}", ray.incomplete & ~kIncompleteKnownBits));

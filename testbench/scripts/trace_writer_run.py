@@ -206,6 +206,26 @@ class OneModule(unittest.TestCase):
             self.assertIn("python3-numpy", r.stderr)
 
 
+class ReferenceLayout(unittest.TestCase):
+    def test_layout_2_reads_with_its_dtype(self):
+        """A trace with reference answers converts to layout 2; read_binary_trace picks its dtype."""
+        from read_binary_trace import describe
+        with tempfile.TemporaryDirectory() as tmp:
+            text = os.path.join(tmp, "r.jsonl")
+            with open(text, "w") as f:
+                f.write('{"format":"vbsim-trace","version":1,"scene":"s.ply","reference":"Embree"}\n'
+                        '{"id":0,"o":[0,0,5],"d":[0,0,-1],"reference":{"prim":3,"t":1.5}}\n'
+                        '{"id":1,"kind":"shadow","o":[0,0,5],"d":[0,0,1],"reference":{"occluded":true}}\n')
+            vbt = os.path.join(tmp, "r.vbt")
+            vbsim("convert", text, "-o", vbt)
+            header, recs = read_binary_trace(vbt)
+            self.assertEqual(header["reference"], "Embree")
+            self.assertEqual(recs.dtype.itemsize, 104)
+            self.assertEqual(recs["reference_prim"].tolist(), [3, -2])
+            self.assertEqual(describe(recs[0])["reference"], {"prim": 3, "t": 1.5})
+            self.assertEqual(describe(recs[1])["reference"], {"occluded": True})
+
+
 def doc_example(language):
     """The code block after '<!-- example: LANGUAGE writer -->' in docs/trace-format.md."""
     with open(os.path.join(ROOT, "docs", "trace-format.md")) as f:

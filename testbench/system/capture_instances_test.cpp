@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <sstream>
 
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "capture_test_support.h"
@@ -102,4 +103,29 @@ TEST_CASE("capture flattens instances set in every transform format Embree accep
   }
   CHECK(differing <= report["incomplete"]["rays"].get<int64_t>());
   CHECK(trace.size() > 9000);
+
+  // Embree's answers are in the trace too (`reference`), the same as embree_hits.jsonl.
+  const std::vector<nlohmann::json> embree = read_embree_hits(out / "embree_hits.jsonl", trace.size());
+  for (const TraceRay& tr : trace) {
+    INFO("ray " << tr.id);
+    const nlohmann::json& e = embree[static_cast<std::size_t>(tr.id)];
+    REQUIRE(tr.has_reference);
+    if (e.contains("occluded")) {
+      CHECK((tr.reference_prim == kReferenceOccluded) == e["occluded"].get<bool>());
+    } else {
+      CHECK(tr.reference_prim == e["prim"].get<int32_t>());
+      if (tr.reference_prim >= 0) CHECK(tr.reference_t == e["t"].get<float>());
+    }
+  }
+  // check counts how often the renderer's answer is the exact one; compare-reference takes the trace as reference.
+  const std::string scored = (out / "scored.jsonl").string();
+  REQUIRE(run_vbsim("oracle -q " + (out / "trace.jsonl").string() + " -o " + scored).exit_code == 0);
+  r = run_vbsim("check " + scored);
+  INFO(r.output);
+  CHECK_THAT(r.output, Catch::Contains(fmt::format("{} rays carry the answer of Embree", trace.size())) &&
+                           Catch::Contains(fmt::format("of the {} with an exact answer agree", trace.size())));
+  r = run_vbsim("compare-reference " + hits.string() + " " + scored + " -o " + (out / "d.jsonl").string());
+  INFO(r.output);
+  CHECK(r.exit_code == 0);
+  CHECK_THAT(r.output, Catch::Contains(fmt::format("{} differ", differing)));
 }
