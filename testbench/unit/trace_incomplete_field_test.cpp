@@ -14,17 +14,10 @@ namespace {
 
 const std::string kHeader = "{\"format\":\"vbsim-trace\",\"version\":1,\"scene\":\"s.ply\"}\n";
 
+/// The error reading every ray of the trace at `path` throws.
 TraceError error_reading(const std::string& path) {
   auto source = open_trace(path);
-  TraceRay r;
-  try {
-    while (source->next(r)) {
-    }
-  } catch (const TraceError& e) {
-    return e;
-  }
-  FAIL("no error reading " << path);
-  return TraceError::in_file(path, "");
+  return trace_error_of([&] { read_all(*source); });
 }
 
 }  // namespace
