@@ -8,8 +8,12 @@ vertices, `a`, `a/b`, `a//c` or `a/b/c`; polygons are fanned); writes `v` and
     /usr/bin/python3 scripts/subdivide_mesh.py traces/bunny/bunny.obj 3 -o bunny235k.obj
 """
 import argparse
+import json
+import os
 import struct
 import sys
+
+from point_jobs import file_digest
 
 
 def f32(x):
@@ -52,12 +56,18 @@ def main():
             a_, b_, c_ = midpoint(i, j), midpoint(j, k), midpoint(k, i)
             out += [(i, a_, c_), (a_, j, b_), (c_, b_, k), (a_, b_, c_)]
         faces = out
-    with open(a.out, "w") as f:
+    prov = {"program": os.path.basename(sys.argv[0]), "command": [sys.executable] + sys.argv,
+            "inputs": [{"path": os.path.relpath(a.mesh), "bytes": os.path.getsize(a.mesh),
+                        "sha256": file_digest(a.mesh)}]}
+    partial = a.out + ".partial"  # the mesh gets its name only when complete
+    with open(partial, "w") as f:
         f.write(f"# {a.mesh} subdivided {a.rounds} times: {len(faces)} triangles\n")
+        f.write("# vbsim-provenance " + json.dumps(prov, separators=(",", ":")) + "\n")
         for v in vertices:
             f.write("v %s %s %s\n" % tuple(repr(x) for x in v))
         for t in faces:
             f.write("f %d %d %d\n" % tuple(i + 1 for i in t))
+    os.replace(partial, a.out)
     print(f"{a.out}: {len(vertices)} vertices, {len(faces)} triangles")
 
 
