@@ -18,43 +18,23 @@ import sys
 
 import numpy as np
 
-MAGIC = b"VBSIMTRB"
-LAYOUT_VERSION = 1
-PREAMBLE_BYTES = 16
-
-# One record; must match binary_trace_format.h field for field.
-RECORD_DTYPE = np.dtype([
-    ("id", "<i8"),
-    ("parent", "<i8"),           # -1: camera ray
-    ("o", "<f4", (3,)),
-    ("d", "<f4", (3,)),
-    ("tmin", "<f4"),
-    ("tmax", "<f4"),             # +inf where the text form has null
-    ("parent_prim", "<i4"),      # -1: none
-    ("parent_t", "<f4"),         # valid when flags & HAS_PARENT_T
-    ("parent_uv", "<f4", (2,)),  # valid when flags & HAS_PARENT_UV
-    ("parent_ns", "<f4", (3,)),  # valid when flags & HAS_PARENT_NS
-    ("expect_prim", "<i4"),      # valid when flags & HAS_EXPECT; -1: a miss
-    ("expect_t", "<f8"),         # valid when flags & HAS_EXPECT_T
-    ("kind", "u1"),              # index into KIND_NAMES
-    ("sign", "u1"),              # 0 or 1, valid when flags & HAS_SIGN
-    ("flags", "<u2"),
-    ("reserved", "<u4"),         # 0
-])
-assert RECORD_DTYPE.itemsize == 96
-
-HAS_PARENT_T = 1 << 0
-HAS_PARENT_UV = 1 << 1
-HAS_PARENT_NS = 1 << 2
-HAS_EXPECT = 1 << 3
-HAS_EXPECT_T = 1 << 4
-HAS_SIGN = 1 << 5
-
-KIND_NAMES = ("primary", "reflect", "refract", "diffuse", "shadow")
+# The layout's constants live in trace_writer.py, a module that stands alone.
+from trace_writer import (HAS_EXPECT, HAS_EXPECT_T, HAS_PARENT_NS, HAS_PARENT_T, HAS_PARENT_UV,  # noqa: F401
+                          HAS_REFERENCE, HAS_REFERENCE_T, HAS_SIGN, INCOMPLETE_REASONS, KIND_NAMES,
+                          LAYOUT_VERSION, MAGIC, PREAMBLE_BYTES, RECORD_DTYPE, REFERENCE_LAYOUT_VERSION,
+                          REFERENCE_RECORD_DTYPE)
 
 
 class BinaryTraceError(ValueError):
     """A file that is not a well-formed binary trace; the message names the file."""
+
+
+def record_dtype(path):
+    """The records' dtype: RECORD_DTYPE, or REFERENCE_RECORD_DTYPE for layout 2."""
+    with open(path, "rb") as f:
+        preamble = f.read(PREAMBLE_BYTES)
+    version = int(np.frombuffer(preamble, dtype="<u4", count=1, offset=8)[0]) if len(preamble) == PREAMBLE_BYTES else 0
+    return REFERENCE_RECORD_DTYPE if version == REFERENCE_LAYOUT_VERSION else RECORD_DTYPE
 
 
 def read_header(path):
@@ -66,7 +46,7 @@ def read_header(path):
         if len(preamble) < PREAMBLE_BYTES:
             raise BinaryTraceError(f"{path}: truncated: the file ends inside its preamble")
         version, n = np.frombuffer(preamble, dtype="<u4", count=2, offset=8)
-        if version != LAYOUT_VERSION:
+        if version not in (LAYOUT_VERSION, REFERENCE_LAYOUT_VERSION):
             raise BinaryTraceError(f"{path}: unsupported binary layout version {version}")
         padded = (int(n) + 7) // 8 * 8
         text = f.read(padded)
@@ -82,29 +62,31 @@ def read_header(path):
 
 def record_count(path, offset):
     """Number of records after `offset`; raises on a partial last record."""
+    dtype = record_dtype(path)
     payload = os.path.getsize(path) - offset
-    count, rest = divmod(payload, RECORD_DTYPE.itemsize)
+    count, rest = divmod(payload, dtype.itemsize)
     if rest:
         raise BinaryTraceError(f"{path}: record {count}: truncated: the file ends {rest} bytes "
-                               f"into this {RECORD_DTYPE.itemsize}-byte record")
+                               f"into this {dtype.itemsize}-byte record")
     return count
 
 
 def read_binary_trace(path):
-    """Returns (header dict, structured array of all records)."""
+    """Returns (header dict, structured array of all records; REFERENCE_RECORD_DTYPE for layout 2)."""
     header, offset = read_header(path)
     count = record_count(path, offset)
-    return header, np.fromfile(path, dtype=RECORD_DTYPE, count=count, offset=offset)
+    return header, np.fromfile(path, dtype=record_dtype(path), count=count, offset=offset)
 
 
 def iter_binary_trace(path, chunk_records=1 << 16):
     """Yields the records in arrays of at most chunk_records, never the whole file."""
     _, offset = read_header(path)
     count = record_count(path, offset)
+    dtype = record_dtype(path)
     with open(path, "rb") as f:
         f.seek(offset)
         for _ in range(0, count, chunk_records):
-            yield np.frombuffer(f.read(chunk_records * RECORD_DTYPE.itemsize), dtype=RECORD_DTYPE)
+            yield np.frombuffer(f.read(chunk_records * dtype.itemsize), dtype=dtype)
 
 
 def describe(record):
@@ -124,6 +106,13 @@ def describe(record):
         ray["parent_ns"] = record["parent_ns"].tolist()
     if flags & HAS_SIGN:
         ray["sign"] = int(record["sign"])
+    if "reference_prim" in record.dtype.names and flags & HAS_REFERENCE:
+        prim = int(record["reference_prim"])
+        ray["reference"] = {"occluded": True} if prim == -2 else {"prim": prim}
+        if flags & HAS_REFERENCE_T:
+            ray["reference"]["t"] = float(record["reference_t"])
+    if int(record["incomplete"]):
+        ray["incomplete"] = [n for k, n in enumerate(INCOMPLETE_REASONS) if int(record["incomplete"]) >> k & 1]
     if flags & HAS_EXPECT:
         ray["expect"] = {"prim": int(record["expect_prim"])}
         if flags & HAS_EXPECT_T:

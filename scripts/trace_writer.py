@@ -1,6 +1,7 @@
 #!/usr/bin/python3
 """Write vbsim traces from Python, with numpy alone: the text form (.jsonl) and
-the binary form (.vbt), chosen by the file name as vbsim chooses it.
+the binary form (.vbt), chosen by the file name as vbsim chooses it. This file
+stands alone: copy it next to a renderer's scripts and import it.
 
     from trace_writer import TraceWriter
     with TraceWriter("out.vbt", scene="bunny.obj") as w:
@@ -22,10 +23,58 @@ import json
 import math
 import os
 
-import numpy as np
+try:
+    import numpy as np
+except ImportError:
+    raise ImportError("trace_writer needs numpy, which this Python does not have: install it (Debian: "
+                      "apt-get install python3-numpy) or run the script with /usr/bin/python3") from None
 
-from read_binary_trace import (HAS_EXPECT, HAS_EXPECT_T, HAS_PARENT_NS, HAS_PARENT_T, HAS_PARENT_UV,
-                               HAS_SIGN, KIND_NAMES, LAYOUT_VERSION, MAGIC, RECORD_DTYPE)
+# The binary form's layout (docs/trace-binary.md); scripts/read_binary_trace.py reads with these.
+MAGIC = b"VBSIMTRB"
+LAYOUT_VERSION = 1
+PREAMBLE_BYTES = 16
+
+# One record; must match binary_trace_format.h field for field.
+RECORD_DTYPE = np.dtype([
+    ("id", "<i8"),
+    ("parent", "<i8"),           # -1: camera ray
+    ("o", "<f4", (3,)),
+    ("d", "<f4", (3,)),
+    ("tmin", "<f4"),
+    ("tmax", "<f4"),             # +inf where the text form has null
+    ("parent_prim", "<i4"),      # -1: none
+    ("parent_t", "<f4"),         # valid when flags & HAS_PARENT_T
+    ("parent_uv", "<f4", (2,)),  # valid when flags & HAS_PARENT_UV
+    ("parent_ns", "<f4", (3,)),  # valid when flags & HAS_PARENT_NS
+    ("expect_prim", "<i4"),      # valid when flags & HAS_EXPECT; -1: a miss
+    ("expect_t", "<f8"),         # valid when flags & HAS_EXPECT_T
+    ("kind", "u1"),              # index into KIND_NAMES
+    ("sign", "u1"),              # 0 or 1, valid when flags & HAS_SIGN
+    ("flags", "<u2"),
+    ("incomplete", "<u4"),       # INCOMPLETE_REASONS bits, 0: none (docs/trace-binary.md)
+])
+assert RECORD_DTYPE.itemsize == 96
+# Layout 2 (a header with a "reference"): the same record, then the renderer's own answer.
+REFERENCE_LAYOUT_VERSION = 2
+REFERENCE_RECORD_DTYPE = np.dtype(RECORD_DTYPE.descr + [
+    ("reference_prim", "<i4"),   # valid when flags & HAS_REFERENCE; -1: none, -2: occluded
+    ("reference_t", "<f4"),      # valid when flags & HAS_REFERENCE_T
+])
+assert REFERENCE_RECORD_DTYPE.itemsize == 104
+HAS_REFERENCE = 1 << 6
+HAS_REFERENCE_T = 1 << 7
+
+HAS_PARENT_T = 1 << 0
+HAS_PARENT_UV = 1 << 1
+HAS_PARENT_NS = 1 << 2
+HAS_EXPECT = 1 << 3
+HAS_EXPECT_T = 1 << 4
+HAS_SIGN = 1 << 5
+
+KIND_NAMES = ("primary", "reflect", "refract", "diffuse", "shadow")
+# The `incomplete` field's reasons: bit k is INCOMPLETE_REASONS[k] (docs/trace-format.md).
+INCOMPLETE_REASONS = ("instance", "quad", "grid", "subdivision", "curve", "point", "user", "motion_blur",
+                      "other_geometry", "filter")
 
 BINARY_EXTENSION = ".vbt"
 _CHUNK = 4096  # records buffered before a write
@@ -60,7 +109,8 @@ def _vec(values, n, name, fail):
     a = np.asarray(values, dtype=np.float64).reshape(-1)
     if a.size != n:
         fail(name, f"expected {n} numbers, got {a.size}")
-    f = a.astype(np.float32)
+    with np.errstate(over="ignore", invalid="ignore"):  # overflow to inf is refused below, by name
+        f = a.astype(np.float32)
     if not np.all(np.isfinite(f)):
         fail(name, f"{a.tolist()} is not finite (in float32)")
     return f
@@ -76,6 +126,8 @@ class TraceWriter:
         self._count = 0
         self._last_id = None
         self._ascending = True
+        self._dense = None  # (begin, end): every id in [begin, end) was written
+        self._sparse = set()  # written ids outside that run
         self._buffer = np.zeros(_CHUNK, dtype=RECORD_DTYPE)
         self._buffered = 0
         if not str(scene):
@@ -111,8 +163,17 @@ class TraceWriter:
 
     # --- one ray --------------------------------------------------------------------------------
     def ray(self, id, o, d, parent=-1, kind="primary", tmin=0.0, tmax=math.inf, parent_prim=-1,
-            parent_t=None, parent_uv=None, parent_ns=None, sign=None, expect=None):
-        """Appends one ray. `expect` is None or (prim, t) with t None for a miss."""
+            parent_t=None, parent_uv=None, parent_ns=None, sign=None, expect=None, incomplete=()):
+        """Appends one ray. `expect` is None or (prim, t) with t None for a miss; `incomplete` the
+        names of the reasons the renderer's answer depends on what the trace does not hold."""
+        # Values beyond float32 become inf here and are refused by the rules below with the
+        # field's name, so numpy's own overflow warning would only come first and say less.
+        with np.errstate(over="ignore", invalid="ignore"):
+            self._ray(id, o, d, parent, kind, tmin, tmax, parent_prim, parent_t, parent_uv, parent_ns, sign,
+                      expect, incomplete)
+
+    def _ray(self, id, o, d, parent, kind, tmin, tmax, parent_prim, parent_t, parent_uv, parent_ns, sign, expect,
+             incomplete):
         rec = np.zeros((), dtype=RECORD_DTYPE)
         rec["id"], rec["parent"], rec["parent_prim"], rec["expect_prim"] = int(id), int(parent), int(parent_prim), -1
         if kind not in KIND_NAMES:
@@ -139,6 +200,12 @@ class TraceWriter:
             if t is not None:
                 rec["expect_t"], flags = float(t), flags | HAS_EXPECT_T
         rec["flags"] = flags
+        bits = 0
+        for name in incomplete:
+            if name not in INCOMPLETE_REASONS:
+                self._fail("incomplete", f"unknown reason {name!r} (expected one of {', '.join(INCOMPLETE_REASONS)})")
+            bits |= 1 << INCOMPLETE_REASONS.index(name)
+        rec["incomplete"] = bits
         self._append(rec.reshape(1))
 
     def rays(self, records):
@@ -162,6 +229,11 @@ class TraceWriter:
                                  "a parent must precede its children")
         if int(r["kind"]) >= len(KIND_NAMES):
             self._fail("kind", f"unknown kind {int(r['kind'])}")
+        if parent >= 0 and int(r["kind"]) == 0:
+            self._fail("kind", f"primary (the default), but the ray has parent {parent}: a camera ray has no "
+                               "parent; give the child's kind (reflect, refract, diffuse or shadow)")
+        if ident in self._sparse or (self._dense and self._dense[0] <= ident < self._dense[1]):
+            self._fail("id", f"{ident} was given before: ids are unique within a trace")
         d = r["d"]
         if not (np.all(np.isfinite(r["o"]))):
             self._fail("o", "is not finite")
@@ -186,7 +258,22 @@ class TraceWriter:
             self._fail("expect.prim", "is below -1")
         if flags & ~0x3F or (flags & HAS_SIGN and int(r["sign"]) > 1):
             self._fail("flags", f"unknown flag bits or a sign other than 0 or 1 ({flags:#x})")
+        if int(r["incomplete"]) >> len(INCOMPLETE_REASONS):
+            self._fail("incomplete", f"unknown reason bits {int(r['incomplete']):#x}")
         self._last_id = ident
+        self._remember(ident)
+
+    def _remember(self, ident):
+        if self._dense is None:
+            self._dense = (ident, ident + 1)
+        elif ident == self._dense[1]:
+            end = ident + 1
+            while end in self._sparse:
+                self._sparse.remove(end)
+                end += 1
+            self._dense = (self._dense[0], end)
+        else:
+            self._sparse.add(ident)
 
     def _append(self, records):
         for r in records:
@@ -201,7 +288,6 @@ class TraceWriter:
             clean["expect_prim"][(flags & HAS_EXPECT) == 0] = -1
             clean["expect_t"][(flags & HAS_EXPECT_T) == 0] = 0
             clean["sign"][(flags & HAS_SIGN) == 0] = 0
-            clean["reserved"] = 0
             self._file.write(clean.tobytes())
         else:
             self._file.write("".join(self._json_line(r) for r in records).encode("utf-8"))
@@ -234,6 +320,10 @@ class TraceWriter:
         if flags & HAS_EXPECT:
             t = f',"t":{_format_double(float(r["expect_t"]))}' if flags & HAS_EXPECT_T else ""
             out.append(f'"expect":{{"prim":{int(r["expect_prim"])}{t}}}')
+        bits = int(r["incomplete"])
+        if bits:
+            names = ",".join(f'"{n}"' for k, n in enumerate(INCOMPLETE_REASONS) if bits >> k & 1)
+            out.append(f'"incomplete":[{names}]')
         return "{" + ",".join(out) + "}\n"
 
     def close(self):

@@ -10,9 +10,11 @@
 
 #include "capture/capture_trees.h"
 #include "capture/captured_scene.h"
+#include "capture/incomplete_rays.h"
 #include "capture/raw_capture_files.h"
 #include "datapath/hit_point.h"
 #include "scene/ply_scene_writer.h"
+#include "trace/incomplete_reasons.h"
 #include "trace/trace_file.h"
 #include "trace/trace_validation.h"
 
@@ -40,13 +42,24 @@ TraceRay base_ray(const RawRay& r) {
 struct Tally {
   std::map<long, int64_t> rays_by_process;
   std::map<std::pair<long, SceneKey>, int64_t> rays_by_scene;
+  /// Processes that ran with a shared libembree3 loaded (pid -> "N scenes, M commits").
+  std::map<long, std::string> embree_processes;
 };
 
 /// The processes that traced rays, checked to have exited normally, and how many rays each traced where.
 Tally tally(const std::map<long, ProcessFiles>& processes) {
   Tally t;
   for (const auto& [pid, p] : processes) {
-    if (p.ray_files.empty()) continue;
+    if (p.ray_files.empty()) {
+      if (p.summary.empty()) continue;
+      const auto values = read_process_summary(p.summary);
+      auto value = [&](const char* k) { return values.count(k) ? values.at(k) : 0; };
+      if (value("embree_loaded") != 0)
+        t.embree_processes[pid] = fmt::format("{} scene{}, {} commit{}", value("scenes"),
+                                              value("scenes") == 1 ? "" : "s", value("commits"),
+                                              value("commits") == 1 ? "" : "s");
+      continue;
+    }
     if (p.summary.empty())
       throw std::runtime_error(fmt::format(
           "process {} traced rays but did not exit normally (no process-{}.txt): the capture is incomplete", pid, pid));
@@ -80,6 +93,22 @@ std::string hit_line(int64_t id, const RawRay& r, int64_t triangle) {
   return s + "}\n";
 }
 
+/// Embree's answer as the trace's `reference`: occluded or not, a miss, or a
+/// hit on a trace triangle; none for a hit on geometry the trace does not hold.
+void set_reference(TraceRay& tr, const RawRay& r, int64_t triangle) {
+  if (occluded(r)) {
+    tr.has_reference = true;
+    tr.reference_prim = std::isinf(r.hit_t) && r.hit_t < 0 ? kReferenceOccluded : -1;
+  } else if (r.geom == kInvalidId) {
+    tr.has_reference = true;
+    tr.reference_prim = -1;
+  } else if (triangle >= 0) {
+    tr.has_reference = tr.has_reference_t = true;
+    tr.reference_prim = static_cast<int32_t>(triangle);
+    tr.reference_t = r.hit_t;
+  }
+}
+
 void rename_into_place(const fs::path& from, const fs::path& to) {
   std::error_code ec;
   fs::rename(from, to, ec);
@@ -91,10 +120,20 @@ void rename_into_place(const fs::path& from, const fs::path& to) {
 MergeResult merge_capture(const std::string& raw_dir, const std::string& out_dir, const MergeOptions& opt) {
   const auto processes = find_capture_files(raw_dir);
   const Tally tally_ = tally(processes);
-  if (tally_.rays_by_scene.empty())
+  if (tally_.rays_by_scene.empty()) {
+    if (!tally_.embree_processes.empty()) {
+      std::string which;
+      for (const auto& [p, what] : tally_.embree_processes)
+        which += fmt::format("{}process {} ({})", which.empty() ? "" : ", ", p, what);
+      throw std::runtime_error(fmt::format(
+          "no Embree ray queries were captured: the application ran with a shared libembree3 ({}) but called no "
+          "rtcIntersect or rtcOccluded function, so there are no rays to trace (it may build BVHs or run point "
+          "queries only)", which));
+    }
     throw std::runtime_error(
-        "no Embree ray queries were captured: the application made no rtcIntersect/rtcOccluded call through a "
-        "shared libembree3 (a statically linked Embree cannot be interposed)");
+        "no Embree ray queries were captured: no process of the application loaded a shared libembree3 (a "
+        "statically linked Embree, or Embree 4, cannot be interposed)");
+  }
   // The trace is the (process, scene, commit) that traced the most rays; ties go to the lowest scene and commit.
   auto best = tally_.rays_by_scene.begin();
   for (auto it = tally_.rays_by_scene.begin(); it != tally_.rays_by_scene.end(); ++it)
@@ -104,11 +143,17 @@ MergeResult merge_capture(const std::string& raw_dir, const std::string& out_dir
   const ProcessFiles& files = processes.at(pid);
   if (key.second == 0 || !files.scenes.count(key))
     throw std::runtime_error(fmt::format("process {} traced rays against scene {} before committing it", pid, key.first));
-  const CapturedScene scene = CapturedScene::read(files.scenes.at(key));
+  const CapturedScene scene = CapturedScene::read(files.scenes.at(key), [&files](uint32_t s, uint32_t c) {
+    const auto it = files.scenes.find({s, c});
+    return it == files.scenes.end() ? std::string() : it->second;
+  });
   if (scene.triangles().empty())
-    throw std::runtime_error(fmt::format("the traced scene (scene {}, commit {}) has no triangle geometry that could be "
-                                         "captured; see its geometries in {}", key.first, key.second,
-                                         files.scenes.at(key)));
+    throw std::runtime_error(fmt::format(
+        "the traced scene (scene {}, commit {}) has no triangle geometry that could be captured, so there is no "
+        "trace to write; its geometries: {}", key.first, key.second, describe_geometries(scene.geometries(), true)));
+  const auto values = read_process_summary(files.summary);
+  const bool unwatched_filters = values.count("unwatched_filter_functions") && values.at("unwatched_filter_functions") > 0;
+  const IncompleteRayJudge judge(scene, unwatched_filters);
 
   // Per thread: eligibility, links, trees.
   std::vector<ThreadRays> threads;
@@ -135,7 +180,7 @@ MergeResult merge_capture(const std::string& raw_dir, const std::string& out_dir
         continue;
       }
       t.eligible[i] = true;
-      outside_hits += !occluded(r) && r.geom != kInvalidId && (r.inst != kInvalidId || scene.triangle_id(r.geom, r.prim) < 0);
+      outside_hits += !occluded(r) && r.geom != kInvalidId && scene.triangle_hit(r).triangle < 0;
     }
     LinkCounts c;
     t.links = linker.link(t.rays.data(), t.rays.size(), t.eligible, c);
@@ -151,11 +196,14 @@ MergeResult merge_capture(const std::string& raw_dir, const std::string& out_dir
   const fs::path trace_path = dir / ("trace" + ext), trace_tmp = dir / ("trace.partial" + ext);
   const fs::path scene_path = dir / "scene.ply", scene_tmp = dir / "scene.partial.ply";
   const fs::path hits_path = dir / "embree_hits.jsonl", hits_tmp = dir / "embree_hits.partial.jsonl";
-  write_ply_scene(scene_tmp.string(), scene.triangles());
+  write_ply_scene(scene_tmp.string(), scene.triangles(), {},
+                  opt.provenance.empty() ? "" : "vbsim-provenance " + opt.provenance);
   TraceHeader header;
   header.scene = "scene.ply";
   header.scene_path = scene_path.string();
   header.generator = "vbsim capture";
+  header.provenance = opt.provenance;
+  header.reference = "Embree in the capturing application (each ray's own answer, as in embree_hits.jsonl)";
   header.description = fmt::format(
       "Embree ray queries of `{}` ({} thread{}): {}; parents linked by origin (capture.json)", join(opt.command),
       threads.size(), threads.size() == 1 ? "" : "s",
@@ -166,7 +214,8 @@ MergeResult merge_capture(const std::string& raw_dir, const std::string& out_dir
   if (!hits) throw std::runtime_error(fmt::format("{}: cannot create", hits_tmp.string()));
   std::vector<std::vector<int64_t>> ids(threads.size());
   for (std::size_t k = 0; k < threads.size(); ++k) ids[k].assign(threads[k].rays.size(), -1);
-  int64_t next_id = 0, moved_origins = 0, cleared_tmin = 0;
+  int64_t next_id = 0, moved_origins = 0, cleared_tmin = 0, incomplete = 0;
+  int64_t incomplete_by_reason[kIncompleteReasonCount] = {};
   for (const TreeRef& tree : trees) {
     const ThreadRays& t = threads[tree.thread];
     for (uint32_t k = 0; k < tree.count; ++k) {
@@ -178,9 +227,10 @@ MergeResult merge_capture(const std::string& raw_dir, const std::string& out_dir
       tr.kind = l.kind;
       if (l.parent >= 0) {
         const RawRay& p = t.rays[static_cast<std::size_t>(l.parent)];
-        const int64_t tri = scene.triangle_id(p.geom, p.prim);
+        const TriangleHit ph = scene.triangle_hit(p);
+        const int64_t tri = ph.triangle;
         tr.parent = ids[tree.thread][static_cast<std::size_t>(l.parent)];
-        tr.set_parent_hit(static_cast<int32_t>(tri), p.hit_t, p.u, p.v);
+        tr.set_parent_hit(static_cast<int32_t>(tri), p.hit_t, ph.u, ph.v);
         tr.sign = dot(tr.d, geometric_normal(scene.triangles()[static_cast<std::size_t>(tri)])) < 0.0f ? 1 : 0;
         if (opt.strip_offsets) {
           const Vec3f hit = hit_point_ray({p.org[0], p.org[1], p.org[2]}, {p.dir[0], p.dir[1], p.dir[2]}, p.hit_t);
@@ -190,8 +240,14 @@ MergeResult merge_capture(const std::string& raw_dir, const std::string& out_dir
           tr.tmin = 0.0f;
         }
       }
+      tr.incomplete = judge.reasons(r);
+      set_reference(tr, r, scene.triangle_hit(r).triangle);
+      if (tr.incomplete != 0) {
+        ++incomplete;
+        for (int b = 0; b < kIncompleteReasonCount; ++b) incomplete_by_reason[b] += (tr.incomplete >> b) & 1u;
+      }
       sink->write(tr);
-      hits << hit_line(tr.id, r, occluded(r) || r.inst != kInvalidId ? -1 : scene.triangle_id(r.geom, r.prim));
+      hits << hit_line(tr.id, r, scene.triangle_hit(r).triangle);
     }
   }
   sink->close();
@@ -199,7 +255,6 @@ MergeResult merge_capture(const std::string& raw_dir, const std::string& out_dir
   if (!hits) throw std::runtime_error(fmt::format("{}: write failed", hits_tmp.string()));
 
   // The report.
-  const auto values = read_process_summary(files.summary);
   json calls = json::object(), rays = json::object();
   for (const auto& [k, v] : values) {
     if (k.rfind("calls.", 0) == 0 && v > 0) calls[k.substr(6)] = v;
@@ -211,6 +266,8 @@ MergeResult merge_capture(const std::string& raw_dir, const std::string& out_dir
               {"status", raw_geometry_status_name(g.status)}};
     if (g.status == RawGeometryStatus::Captured)
       e.update({{"first_triangle", g.first_triangle}, {"triangles", g.triangles}, {"vertices", g.vertices}});
+    if (g.filters & kRawIntersectFilter) e["intersect_filter"] = true;
+    if (g.filters & kRawOccludedFilter) e["occluded_filter"] = true;
     geometries.push_back(e);
   }
   json other_processes = json::array();
@@ -222,8 +279,17 @@ MergeResult merge_capture(const std::string& raw_dir, const std::string& out_dir
     }
   json kinds = json::object();
   for (int k = 0; k < kRayKindCount; ++k) kinds[ray_kind_name(static_cast<RayKind>(k))] = links.by_kind[k];
+  json by_reason = json::object();
+  std::string reasons_text;
+  for (int b = 0; b < kIncompleteReasonCount; ++b)
+    if (incomplete_by_reason[b] > 0) {
+      by_reason[incomplete_reason_name(b)] = incomplete_by_reason[b];
+      reasons_text += fmt::format("{}{} {}", reasons_text.empty() ? "" : ", ", incomplete_reason_name(b),
+                                  incomplete_by_reason[b]);
+    }
   MergeResult out;
   out.trace_path = trace_path.string();
+  out.incomplete_rays = incomplete;
   out.report = {
       {"command", opt.command},
       {"pid", pid},
@@ -237,6 +303,10 @@ MergeResult merge_capture(const std::string& raw_dir, const std::string& out_dir
                         {"other_scene_or_commit", other_scene}, {"invalid", invalid},
                         {"invalid_by_field", invalid_by_field}, {"first_invalid", first_invalid}}},
       {"hits_outside_captured_triangles", outside_hits},
+      {"incomplete", {{"rays", incomplete}, {"by_reason", by_reason},
+                      {"unwatched_filter_functions", unwatched_filters}}},
+      {"instances", {{"flattened", scene.has_instances()}, {"rays_checked", judge.flattened_checked()},
+                     {"flattened_answer_differs", judge.flattened_differs()}}},
       {"links", {{"at_hit_point", links.at_hit_point}, {"normal_offset", links.normal_offset},
                  {"max_normal_offset", links.max_offset}, {"unlinked_intersect", links.unlinked_intersect},
                  {"unlinked_occluded", links.unlinked_occluded}}},
@@ -264,10 +334,23 @@ MergeResult merge_capture(const std::string& raw_dir, const std::string& out_dir
       "  links: {} at the hit point, {} offset along the normal (up to {:.3g} of the hit point's size); "
       "unlinked: {} intersect, {} occluded\n"
       "  not captured: {} rays of other processes, {} of other scenes or commits, {} invalid; "
-      "{} hits outside the captured triangles\n",
+      "{} hits outside the captured triangles\n"
+      "  geometries not in the trace: {}\n",
       next_id, threads.size(), threads.size() == 1 ? "" : "s", by_function, trace_path.string(),
       scene.triangles().size(), scene_path.string(), links.at_hit_point, links.normal_offset, links.max_offset,
-      links.unlinked_intersect, links.unlinked_occluded, other_process_rays, other_scene, invalid, outside_hits);
+      links.unlinked_intersect, links.unlinked_occluded, other_process_rays, other_scene, invalid, outside_hits,
+      describe_geometries(scene.geometries(), false));
+  if (scene.has_instances())
+    out.summary += fmt::format(
+        "  instances: flattened into world-space triangles; {} of {} rays answered otherwise on them than by Embree's "
+        "instance-space test (marked instance)\n", judge.flattened_differs(), judge.flattened_checked());
+  if (incomplete > 0)
+    out.summary += fmt::format(
+        "  incomplete: {} of {} rays ({}): Embree's answer involves geometry or filter functions the trace does "
+        "not hold; they are marked `incomplete` in the trace and replays do not score them\n",
+        incomplete, next_id, reasons_text);
+  else
+    out.summary += "  incomplete: 0 rays (no answer involves geometry outside the trace or a filter function)\n";
   return out;
 }
 

@@ -24,12 +24,16 @@ struct MergeOptions {
   /// the application's, its own offsets included.
   bool strip_offsets = false;
   std::vector<std::string> command;  ///< the application's command line, for the header and report
+  /// What wrote the outputs (provenance_line()): the trace header's `provenance`
+  /// and scene.ply's `vbsim-provenance` comment; empty: none.
+  std::string provenance;
 };
 
 struct MergeResult {
   nlohmann::json report;  ///< what capture.json holds
   std::string summary;    ///< a few lines for the terminal
   std::string trace_path;
+  int64_t incomplete_rays = 0;  ///< rays marked `incomplete` (incomplete_rays.h)
 };
 
 /// Merges the files in `raw_dir` into `out_dir`. Throws std::runtime_error

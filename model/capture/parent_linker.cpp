@@ -39,7 +39,7 @@ Vec3f org_of(const RawRay& r) { return {r.org[0], r.org[1], r.org[2]}; }
 Vec3f dir_of(const RawRay& r) { return {r.dir[0], r.dir[1], r.dir[2]}; }
 
 bool is_hit(const RawRay& r) {
-  return r.op == static_cast<uint16_t>(RawOp::Intersect) && r.geom != kInvalidId && r.inst == kInvalidId;
+  return r.op == static_cast<uint16_t>(RawOp::Intersect) && r.geom != kInvalidId;  // triangle_hit maps instances
 }
 
 }  // namespace
@@ -128,7 +128,7 @@ std::vector<RayLink> ParentLinker::link(const RawRay* rays, std::size_t n, const
     }
     ++counts.by_kind[static_cast<int>(l.kind)];
     if (is_hit(r)) {
-      const int64_t tri = scene_.triangle_id(r.geom, r.prim);
+      const int64_t tri = scene_.triangle_hit(r).triangle;
       if (tri >= 0) {
         recent.push_back(candidate(i, r, tri, scene_.triangles()[static_cast<std::size_t>(tri)]));
         if (recent.size() > rules_.history) recent.pop_front();

@@ -12,8 +12,10 @@
 //                               when captured, its vertices and indices
 //   process-<pid>.txt           written when the process exits normally:
 //                               "key value" lines (calls and rays per API,
-//                               threads, scenes, commits); its absence means
-//                               the process did not finish
+//                               threads, scenes, commits, whether a shared
+//                               libembree3 was loaded, filter functions the
+//                               shim could not watch); its absence means the
+//                               process did not finish
 #pragma once
 #include <cstdint>
 
@@ -57,7 +59,13 @@ struct RawRay {
   uint32_t geom;     ///< geomID of the hit, kInvalidId for a miss or an occlusion query
   uint32_t prim;
   uint32_t inst;     ///< instID[0]: kInvalidId unless the hit is inside an instance
-  uint32_t reserved;
+  uint32_t flags;    ///< RawRayFlag bits
+};
+
+/// What else took part in a ray's call (RawRay::flags).
+enum RawRayFlag : uint32_t {
+  kRawFilterChanged = 1u << 0,   ///< a geometry filter function rejected or changed a candidate hit in the call
+  kRawContextFilter = 1u << 1,   ///< the call's intersect context carried a filter function
 };
 static_assert(sizeof(RawRay) == 96, "RawRay is a 96-byte record");
 
@@ -74,12 +82,14 @@ static_assert(sizeof(RawSceneHeader) == 24, "RawSceneHeader is 24 bytes");
 
 /// Why a geometry's triangles are (not) in the snapshot.
 enum class RawGeometryStatus : uint32_t {
-  Captured = 0,       ///< triangles: vertex_count float3, then triangle_count uint3 follow
-  NotTriangles = 1,   ///< another geometry type (quads, curves, instances, user, ...)
+  Captured = 0,       ///< vertex_count float3, then triangle_count primitives: uint3 (triangles) or uint4
+                      ///< (quads); for an instance a RawInstance instead
+  NotTriangles = 1,   ///< another geometry type than triangles and quads (curves, instances, user, ...)
   MotionBlur = 2,     ///< more than one time step
   MissingBuffer = 3,  ///< no vertex or index buffer set
-  BadFormat = 4,      ///< a buffer format other than FLOAT3 vertices and UINT3 indices
+  BadFormat = 4,      ///< a buffer format other than FLOAT3 vertices and UINT3 (quads: UINT4) indices
   Disabled = 5,       ///< rtcDisableGeometry: Embree does not trace it
+  NestedInstance = 6, ///< (vbsim's reading only) an instance of a scene that holds instances
 };
 
 struct RawGeometry {
@@ -87,9 +97,19 @@ struct RawGeometry {
   uint32_t type;            ///< RTCGeometryType
   uint32_t status;          ///< RawGeometryStatus
   uint32_t vertex_count;    ///< 0 unless captured
-  uint32_t triangle_count;  ///< 0 unless captured
-  uint32_t reserved;
+  uint32_t triangle_count;  ///< primitives (triangles or quads); 0 unless captured
+  uint32_t filters;         ///< RawGeometryFilter bits: filter functions set on the geometry
 };
+
+/// What follows a captured instance's RawGeometry: the scene it instances and its transform.
+struct RawInstance {
+  uint32_t scene;    ///< ordinal of the instanced scene in the process
+  uint32_t commit;   ///< that scene's snapshot when the instancing scene was committed
+  float xfm[12];     ///< row-major 3x4: world = M object (instance_transform.h)
+};
+static_assert(sizeof(RawInstance) == 56, "RawInstance is 56 bytes");
+
+enum RawGeometryFilter : uint32_t { kRawIntersectFilter = 1u << 0, kRawOccludedFilter = 1u << 1 };
 static_assert(sizeof(RawGeometry) == 24, "RawGeometry is 24 bytes");
 
 }  // namespace vbsim::capture

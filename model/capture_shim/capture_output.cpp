@@ -1,5 +1,6 @@
 #include "capture_output.h"
 
+#include <dlfcn.h>
 #include <fcntl.h>
 #include <pthread.h>
 #include <unistd.h>
@@ -10,6 +11,8 @@
 #include <cstring>
 #include <mutex>
 #include <vector>
+
+#include "filter_watch.h"
 
 namespace vbsim::shim {
 
@@ -135,6 +138,10 @@ void write_summary() {
   s += "scenes " + std::to_string(p.scenes.load()) + "\n";
   s += "commits " + std::to_string(p.commits.load()) + "\n";
   s += std::string("write_failed ") + (p.write_failed ? "1" : "0") + "\n";
+  // A shared libembree3 after the shim: what the interposed functions call (absent when the
+  // program links Embree statically or not at all).
+  s += std::string("embree_loaded ") + (dlsym(RTLD_NEXT, "rtcNewDevice") ? "1" : "0") + "\n";
+  s += "unwatched_filter_functions " + std::to_string(unwatched_filter_functions()) + "\n";
   s += "complete 1\n";
   write_capture_file("process-" + std::to_string(p.pid) + ".txt", s);
 }

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "capture_output.h"
+#include "filter_watch.h"
 #include "real_embree.h"
 #include "scene_registry.h"
 
@@ -87,10 +88,13 @@ void packet(RawOp op, RawApi api, const int* valid, RTCScene scene, RTCIntersect
       lanes[active] = i;
       saved[active++] = input_of_soa(op, api, stamp, p, N, i);
     }
+  const FilterWatch watch(ctx);
   real(valid, scene, ctx, p);
+  const uint32_t flags = watch.flags();
   for (unsigned k = 0; k < active; ++k) {
     if (op == RawOp::Intersect) output_of_soa(saved[k], p, N, lanes[k]);
     else saved[k].hit_t = soa_f(p, N, 8, lanes[k]);
+    saved[k].flags = flags;
     record_ray(saved[k]);
   }
 }
@@ -102,8 +106,10 @@ void rtcIntersect1(RTCScene scene, RTCIntersectContext* ctx, RTCRayHit* rh) {
   if (!capture_enabled()) return real(scene, ctx, rh);
   count_call(RawApi::One, false);
   RawRay r = input_of(RawOp::Intersect, RawApi::One, scene_stamp(scene), rh->ray);
+  const FilterWatch watch(ctx);
   real(scene, ctx, rh);
   output_of(r, *rh);
+  r.flags = watch.flags();
   record_ray(r);
 }
 
@@ -112,8 +118,10 @@ void rtcOccluded1(RTCScene scene, RTCIntersectContext* ctx, RTCRay* ray) {
   if (!capture_enabled()) return real(scene, ctx, ray);
   count_call(RawApi::One, true);
   RawRay r = input_of(RawOp::Occluded, RawApi::One, scene_stamp(scene), *ray);
+  const FilterWatch watch(ctx);
   real(scene, ctx, ray);
   r.hit_t = ray->tfar;
+  r.flags = watch.flags();
   record_ray(r);
 }
 
@@ -136,7 +144,7 @@ VBSIM_PACKET_HOOK(rtcOccluded16, RTCRay16, 16, RawOp::Occluded, RawApi::Sixteen)
 namespace {
 
 template <class Ray, class At, class Call>
-void stream(RawOp op, RawApi api, RTCScene scene, unsigned m, At at, Call call) {
+void stream(RawOp op, RawApi api, RTCScene scene, const RTCIntersectContext* ctx, unsigned m, At at, Call call) {
   count_call(api, op == RawOp::Occluded);
   const SceneStamp stamp = scene_stamp(scene);
   std::vector<RawRay> saved;  // inputs saved across the call (local: a filter function may trace too)
@@ -149,11 +157,14 @@ void stream(RawOp op, RawApi api, RTCScene scene, unsigned m, At at, Call call) 
       saved.push_back(input_of(op, api, stamp, ray));
     }
   }
+  const FilterWatch watch(ctx);
   call();
+  const uint32_t flags = watch.flags();
   for (std::size_t k = 0; k < saved.size(); ++k) {
     const Ray& r = *at(lanes[k]);
     if constexpr (std::is_same_v<Ray, RTCRayHit>) output_of(saved[k], r);
     else saved[k].hit_t = reinterpret_cast<const RTCRay&>(r).tfar;
+    saved[k].flags = flags;
     record_ray(saved[k]);
   }
 }
@@ -164,32 +175,32 @@ void rtcIntersect1M(RTCScene scene, RTCIntersectContext* ctx, RTCRayHit* rh, uns
   VBSIM_REAL(rtcIntersect1M);
   if (!capture_enabled()) return real(scene, ctx, rh, m, stride);
   auto at = [&](unsigned i) { return reinterpret_cast<const RTCRayHit*>(reinterpret_cast<const char*>(rh) + i * stride); };
-  stream<RTCRayHit>(RawOp::Intersect, RawApi::OneM, scene, m, at, [&] { real(scene, ctx, rh, m, stride); });
+  stream<RTCRayHit>(RawOp::Intersect, RawApi::OneM, scene, ctx, m, at, [&] { real(scene, ctx, rh, m, stride); });
 }
 void rtcOccluded1M(RTCScene scene, RTCIntersectContext* ctx, RTCRay* ray, unsigned int m, size_t stride) {
   VBSIM_REAL(rtcOccluded1M);
   if (!capture_enabled()) return real(scene, ctx, ray, m, stride);
   auto at = [&](unsigned i) { return reinterpret_cast<const RTCRay*>(reinterpret_cast<const char*>(ray) + i * stride); };
-  stream<RTCRay>(RawOp::Occluded, RawApi::OneM, scene, m, at, [&] { real(scene, ctx, ray, m, stride); });
+  stream<RTCRay>(RawOp::Occluded, RawApi::OneM, scene, ctx, m, at, [&] { real(scene, ctx, ray, m, stride); });
 }
 void rtcIntersect1Mp(RTCScene scene, RTCIntersectContext* ctx, RTCRayHit** rh, unsigned int m) {
   VBSIM_REAL(rtcIntersect1Mp);
   if (!capture_enabled()) return real(scene, ctx, rh, m);
-  stream<RTCRayHit>(RawOp::Intersect, RawApi::OneMp, scene, m, [&](unsigned i) { return rh[i]; },
+  stream<RTCRayHit>(RawOp::Intersect, RawApi::OneMp, scene, ctx, m, [&](unsigned i) { return rh[i]; },
                     [&] { real(scene, ctx, rh, m); });
 }
 void rtcOccluded1Mp(RTCScene scene, RTCIntersectContext* ctx, RTCRay** ray, unsigned int m) {
   VBSIM_REAL(rtcOccluded1Mp);
   if (!capture_enabled()) return real(scene, ctx, ray, m);
-  stream<RTCRay>(RawOp::Occluded, RawApi::OneMp, scene, m, [&](unsigned i) { return ray[i]; },
+  stream<RTCRay>(RawOp::Occluded, RawApi::OneMp, scene, ctx, m, [&](unsigned i) { return ray[i]; },
                  [&] { real(scene, ctx, ray, m); });
 }
 
 // Streams of M packets of width N, `stride` bytes apart (RTCRayHitN / RTCRayN blocks).
 namespace {
 
-void packet_stream(RawOp op, RTCScene scene, const void* base, unsigned n, unsigned m, size_t stride,
-                   const std::function<void()>& call) {
+void packet_stream(RawOp op, RTCScene scene, const RTCIntersectContext* ctx, const void* base, unsigned n,
+                   unsigned m, size_t stride, const std::function<void()>& call) {
   count_call(RawApi::NM, op == RawOp::Occluded);
   const SceneStamp stamp = scene_stamp(scene);
   auto block = [&](unsigned j) { return static_cast<const char*>(base) + j * stride; };
@@ -201,11 +212,14 @@ void packet_stream(RawOp op, RTCScene scene, const void* base, unsigned n, unsig
         lanes.push_back(j * n + i);
         saved.push_back(input_of_soa(op, RawApi::NM, stamp, block(j), n, i));
       }
+  const FilterWatch watch(ctx);
   call();
+  const uint32_t flags = watch.flags();
   for (std::size_t k = 0; k < saved.size(); ++k) {
     const unsigned j = lanes[k] / n, i = lanes[k] % n;
     if (op == RawOp::Intersect) output_of_soa(saved[k], block(j), n, i);
     else saved[k].hit_t = soa_f(block(j), n, 8, i);
+    saved[k].flags = flags;
     record_ray(saved[k]);
   }
 }
@@ -234,13 +248,13 @@ void rtcIntersectNM(RTCScene scene, RTCIntersectContext* ctx, RTCRayHitN* rh, un
                     size_t stride) {
   VBSIM_REAL(rtcIntersectNM);
   if (!capture_enabled()) return real(scene, ctx, rh, n, m, stride);
-  packet_stream(RawOp::Intersect, scene, rh, n, m, stride, [&] { real(scene, ctx, rh, n, m, stride); });
+  packet_stream(RawOp::Intersect, scene, ctx, rh, n, m, stride, [&] { real(scene, ctx, rh, n, m, stride); });
 }
 void rtcOccludedNM(RTCScene scene, RTCIntersectContext* ctx, RTCRayN* ray, unsigned int n, unsigned int m,
                    size_t stride) {
   VBSIM_REAL(rtcOccludedNM);
   if (!capture_enabled()) return real(scene, ctx, ray, n, m, stride);
-  packet_stream(RawOp::Occluded, scene, ray, n, m, stride, [&] { real(scene, ctx, ray, n, m, stride); });
+  packet_stream(RawOp::Occluded, scene, ctx, ray, n, m, stride, [&] { real(scene, ctx, ray, n, m, stride); });
 }
 
 void rtcIntersectNp(RTCScene scene, RTCIntersectContext* ctx, const RTCRayHitNp* rh, unsigned int n) {
@@ -249,8 +263,11 @@ void rtcIntersectNp(RTCScene scene, RTCIntersectContext* ctx, const RTCRayHitNp*
   std::vector<RawRay> saved;  // inputs saved across the call (local: a filter function may trace too)
   std::vector<unsigned> lanes;
   save_np(RawOp::Intersect, scene, rh->ray, n, saved, lanes);
+  const FilterWatch watch(ctx);
   real(scene, ctx, rh, n);
+  const uint32_t flags = watch.flags();
   for (std::size_t k = 0; k < saved.size(); ++k) {
+    saved[k].flags = flags;
     const unsigned i = lanes[k];
     const RTCHitNp& h = rh->hit;
     set_hit(saved[k], rh->ray.tfar[i], h.Ng_x[i], h.Ng_y[i], h.Ng_z[i], h.u[i], h.v[i], h.primID[i], h.geomID[i],
@@ -264,8 +281,11 @@ void rtcOccludedNp(RTCScene scene, RTCIntersectContext* ctx, const RTCRayNp* ray
   std::vector<RawRay> saved;
   std::vector<unsigned> lanes;
   save_np(RawOp::Occluded, scene, *ray, n, saved, lanes);
+  const FilterWatch watch(ctx);
   real(scene, ctx, ray, n);
+  const uint32_t flags = watch.flags();
   for (std::size_t k = 0; k < saved.size(); ++k) {
+    saved[k].flags = flags;
     saved[k].hit_t = ray->tfar[lanes[k]];
     record_ray(saved[k]);
   }

@@ -58,6 +58,25 @@ void rtcSetGeometryTimeStepCount(RTCGeometry geometry, unsigned int count) {
   if (capture_enabled()) on_time_steps(geometry, count);
 }
 
+void rtcSetGeometryInstancedScene(RTCGeometry geometry, RTCScene scene) {
+  VBSIM_REAL(rtcSetGeometryInstancedScene);
+  real(geometry, scene);
+  if (capture_enabled()) on_instanced_scene(geometry, scene);
+}
+
+void rtcSetGeometryTransform(RTCGeometry geometry, unsigned int time_step, enum RTCFormat format, const void* xfm) {
+  VBSIM_REAL(rtcSetGeometryTransform);
+  real(geometry, time_step, format, xfm);
+  if (capture_enabled()) on_transform(geometry, time_step, format, xfm);
+}
+
+void rtcSetGeometryTransformQuaternion(RTCGeometry geometry, unsigned int time_step,
+                                       const struct RTCQuaternionDecomposition* qd) {
+  VBSIM_REAL(rtcSetGeometryTransformQuaternion);
+  real(geometry, time_step, qd);
+  if (capture_enabled()) on_quaternion_transform(geometry);
+}
+
 void rtcSetGeometryBuffer(RTCGeometry geometry, enum RTCBufferType type, unsigned int slot, enum RTCFormat format,
                           RTCBuffer buffer, size_t offset, size_t stride, size_t count) {
   VBSIM_REAL(rtcSetGeometryBuffer);

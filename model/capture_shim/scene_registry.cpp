@@ -7,6 +7,7 @@
 #include <string>
 #include <unordered_map>
 
+#include "capture/instance_transform.h"
 #include "capture_output.h"
 #include "real_embree.h"
 
@@ -28,6 +29,11 @@ struct Geometry {
   RTCGeometryType type = RTC_GEOMETRY_TYPE_TRIANGLE;
   unsigned time_steps = 1;
   bool enabled = true;
+  uint32_t filters = 0;  // RawGeometryFilter bits
+  // Instances: the instanced scene and the time-step-0 transform (row-major 3x4).
+  RTCScene instanced = nullptr;
+  bool has_transform = false, unsupported_transform = false;
+  float xfm[12] = {};
   std::map<std::pair<int, unsigned>, Binding> buffers;  // (RTCBufferType, slot)
 };
 
@@ -59,21 +65,44 @@ const unsigned char* data_of(const Binding& b) {
   return base ? base + b.offset : nullptr;
 }
 
+/// An instance's entry: its RawGeometry, then its RawInstance when captured
+/// (an instanced scene committed before, one time step, a matrix transform).
+void append_instance(std::string& out, RawGeometry rg, const Geometry& g, const Registry& r) {
+  const auto scene = g.instanced ? r.scenes.find(g.instanced) : r.scenes.end();
+  RawGeometryStatus status = RawGeometryStatus::Captured;
+  if (!g.enabled) status = RawGeometryStatus::Disabled;
+  else if (g.time_steps != 1) status = RawGeometryStatus::MotionBlur;
+  else if (g.unsupported_transform) status = RawGeometryStatus::BadFormat;
+  else if (scene == r.scenes.end() || scene->second.commit == 0 || !g.has_transform)
+    status = RawGeometryStatus::MissingBuffer;
+  rg.status = static_cast<uint32_t>(status);
+  out.append(reinterpret_cast<const char*>(&rg), sizeof rg);
+  if (status != RawGeometryStatus::Captured) return;
+  capture::RawInstance ri{};
+  ri.scene = scene->second.ordinal;
+  ri.commit = scene->second.commit;
+  std::memcpy(ri.xfm, g.xfm, sizeof ri.xfm);
+  out.append(reinterpret_cast<const char*>(&ri), sizeof ri);
+}
+
 /// One geometry's entry in a snapshot: its RawGeometry, then its data when captured.
-void append_geometry(std::string& out, unsigned geom_id, const Geometry& g) {
+void append_geometry(std::string& out, unsigned geom_id, const Geometry& g, const Registry& r) {
   RawGeometry rg{};
   rg.geom_id = geom_id;
   rg.type = static_cast<uint32_t>(g.type);
+  rg.filters = g.filters;
+  if (g.type == RTC_GEOMETRY_TYPE_INSTANCE) return append_instance(out, rg, g, r);
   const auto vb = g.buffers.find({RTC_BUFFER_TYPE_VERTEX, 0});
   const auto ib = g.buffers.find({RTC_BUFFER_TYPE_INDEX, 0});
   const unsigned char* vdata = vb == g.buffers.end() ? nullptr : data_of(vb->second);
   const unsigned char* idata = ib == g.buffers.end() ? nullptr : data_of(ib->second);
+  const bool quads = g.type == RTC_GEOMETRY_TYPE_QUAD;  // each quad: 4 indices, 2 triangles as Embree splits it
   RawGeometryStatus status = RawGeometryStatus::Captured;
-  if (g.type != RTC_GEOMETRY_TYPE_TRIANGLE) status = RawGeometryStatus::NotTriangles;
+  if (g.type != RTC_GEOMETRY_TYPE_TRIANGLE && !quads) status = RawGeometryStatus::NotTriangles;
   else if (!g.enabled) status = RawGeometryStatus::Disabled;
   else if (g.time_steps != 1) status = RawGeometryStatus::MotionBlur;
   else if (!vdata || !idata) status = RawGeometryStatus::MissingBuffer;
-  else if (vb->second.format != RTC_FORMAT_FLOAT3 || ib->second.format != RTC_FORMAT_UINT3)
+  else if (vb->second.format != RTC_FORMAT_FLOAT3 || ib->second.format != (quads ? RTC_FORMAT_UINT4 : RTC_FORMAT_UINT3))
     status = RawGeometryStatus::BadFormat;
   rg.status = static_cast<uint32_t>(status);
   if (status == RawGeometryStatus::Captured) {
@@ -86,7 +115,7 @@ void append_geometry(std::string& out, unsigned geom_id, const Geometry& g) {
   for (std::size_t i = 0; i < rg.vertex_count; ++i)
     out.append(reinterpret_cast<const char*>(vdata + i * vb->second.stride), 3 * sizeof(float));
   for (std::size_t i = 0; i < rg.triangle_count; ++i)
-    out.append(reinterpret_cast<const char*>(idata + i * ib->second.stride), 3 * sizeof(uint32_t));
+    out.append(reinterpret_cast<const char*>(idata + i * ib->second.stride), (quads ? 4 : 3) * sizeof(uint32_t));
 }
 
 thread_local struct {
@@ -139,6 +168,35 @@ void on_time_steps(RTCGeometry geometry, unsigned count) {
   r.geometries[geometry].time_steps = count;
 }
 
+void on_instanced_scene(RTCGeometry geometry, RTCScene scene) {
+  Registry& r = registry();
+  std::lock_guard<std::mutex> lock(r.m);
+  r.geometries[geometry].instanced = scene;
+}
+
+void on_transform(RTCGeometry geometry, unsigned step, RTCFormat format, const void* xfm) {
+  Registry& r = registry();
+  std::lock_guard<std::mutex> lock(r.m);
+  Geometry& g = r.geometries[geometry];
+  if (step != 0) return;  // more time steps make it motion-blurred (time_steps), not captured
+  g.has_transform = xfm && capture::instance_transform_row_major(static_cast<uint32_t>(format),
+                                                                  static_cast<const float*>(xfm), g.xfm);
+  g.unsupported_transform = !g.has_transform;
+}
+
+void on_quaternion_transform(RTCGeometry geometry) {
+  Registry& r = registry();
+  std::lock_guard<std::mutex> lock(r.m);
+  r.geometries[geometry].unsupported_transform = true;
+}
+
+void on_filter(RTCGeometry geometry, uint32_t which, bool set) {
+  Registry& r = registry();
+  std::lock_guard<std::mutex> lock(r.m);
+  uint32_t& f = r.geometries[geometry].filters;
+  f = set ? (f | which) : (f & ~which);
+}
+
 void on_buffer(RTCGeometry geometry, RTCBufferType type, unsigned slot, RTCFormat format, const void* ptr,
                RTCBuffer buffer, std::size_t offset, std::size_t stride, std::size_t count) {
   Registry& r = registry();
@@ -158,7 +216,7 @@ void on_commit(RTCScene scene) {
   std::lock_guard<std::mutex> lock(r.m);
   Scene& s = r.scenes[scene];
   std::string body;
-  for (const auto& [geom_id, geometry] : s.attached) append_geometry(body, geom_id, r.geometries[geometry]);
+  for (const auto& [geom_id, geometry] : s.attached) append_geometry(body, geom_id, r.geometries[geometry], r);
   count_commit();
   if (s.commit > 0 && body == s.last_snapshot) return;  // the same triangles: the same snapshot
   ++s.commit;

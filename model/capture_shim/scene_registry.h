@@ -22,6 +22,13 @@ void on_attach(RTCScene scene, RTCGeometry geometry, unsigned geom_id);
 void on_detach(RTCScene scene, unsigned geom_id);
 void on_enable(RTCGeometry geometry, bool enabled);
 void on_time_steps(RTCGeometry geometry, unsigned count);
+void on_instanced_scene(RTCGeometry geometry, RTCScene scene);
+/// rtcSetGeometryTransform: time step `step` in `format` (any of Embree's layouts).
+void on_transform(RTCGeometry geometry, unsigned step, RTCFormat format, const void* xfm);
+/// rtcSetGeometryTransformQuaternion: a transform the capture does not flatten.
+void on_quaternion_transform(RTCGeometry geometry);
+/// A filter function (RawGeometryFilter `which`) set on the geometry, or cleared.
+void on_filter(RTCGeometry geometry, uint32_t which, bool set);
 /// A buffer bound to (type, slot): data at `ptr` + `offset` (shared and new buffers), else in `buffer` at `offset`.
 void on_buffer(RTCGeometry geometry, RTCBufferType type, unsigned slot, RTCFormat format, const void* ptr,
                RTCBuffer buffer, std::size_t offset, std::size_t stride, std::size_t count);

@@ -7,7 +7,7 @@
 namespace vbsim {
 
 RayOutcome conclude_ray(const TraceRay& tr, const EmittedRay& er, const Hit& hit, uint64_t rejected,
-                        const Scene& scene, KindStats& ks) {
+                        const Scene& scene, bool score_incomplete, KindStats& ks) {
   RayOutcome out;
   out.hit = hit;
   out.rejected = rejected;
@@ -21,7 +21,10 @@ RayOutcome conclude_ray(const TraceRay& tr, const EmittedRay& er, const Hit& hit
   ks.hits += out.answer >= 0;
   ks.emission_fallbacks += er.emission_fallback;
   ks.offset_fallbacks += er.offset_fallback;
-  if (tr.has_expect) {
+  const bool excluded = tr.incomplete != 0 && !score_incomplete;
+  ks.incomplete_excluded += excluded;
+  ks.incomplete_scored += tr.incomplete != 0 && !excluded && tr.has_expect;
+  if (tr.has_expect && !excluded) {
     out.scored = true;
     if (verdict_needs_exact(tr, out.answer)) {  // rational numbers only when needed
       const ExactRay intended = intended_ray(tr, scene, er.parent ? &*er.parent : nullptr);
@@ -52,7 +55,7 @@ RayOutcome replay_one_ray(const TraceRay& tr, const Scene& scene, const Bvh& bvh
       hit = closest_hit<PbrtWatertightTester>(bvh, er.ray, filter, ks.candidates, ks.traversal, any_hit);
       break;
   }
-  return conclude_ray(tr, er, hit, ks.candidates.rejected - rejected_before, scene, ks);
+  return conclude_ray(tr, er, hit, ks.candidates.rejected - rejected_before, scene, opt.score_incomplete, ks);
 }
 
 FunctionalReplayer::FunctionalReplayer(const Scene& scene, const Bvh& bvh, const ReplayOptions& options)
@@ -76,7 +79,7 @@ EmittedRay FunctionalReplayer::emit(const TraceRay& tr) {
 
 RayOutcome FunctionalReplayer::conclude(const TraceRay& tr, const EmittedRay& er, const Hit& hit,
                                         uint64_t rejected) {
-  return conclude_ray(tr, er, hit, rejected, scene_, stats_.by_kind[static_cast<int>(tr.kind)]);
+  return conclude_ray(tr, er, hit, rejected, scene_, opt_.score_incomplete, stats_.by_kind[static_cast<int>(tr.kind)]);
 }
 
 }  // namespace vbsim

@@ -39,9 +39,11 @@ inline bool search_stops_at_any_hit(const ReplayOptions& opt, const TraceRay& tr
 
 /// The outcome of a search that returned `hit` with `rejected` rejected
 /// candidates for `tr` (emitted as `er`, whose `parent` gives the intended
-/// origin): the method's answer and its verdict, counted into `ks`.
+/// origin): the method's answer and its verdict, counted into `ks`. A ray
+/// marked `incomplete` is left unscored (counted in ks.incomplete_excluded)
+/// unless `score_incomplete`.
 RayOutcome conclude_ray(const TraceRay& tr, const EmittedRay& er, const Hit& hit, uint64_t rejected,
-                        const Scene& scene, KindStats& ks);
+                        const Scene& scene, bool score_incomplete, KindStats& ks);
 
 /// One ray through emission, the closest-hit search with `filter` (built from
 /// opt.method) and the verdict, counted into `ks`. `parent` (may be null): the

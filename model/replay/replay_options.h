@@ -24,6 +24,9 @@ struct ReplayOptions {
   /// resource limit, not part of the echoed configuration; a parent further
   /// back is an error, never a silently different answer.
   int64_t parent_window = ParentRayStore::kDefaultWindow;
+  /// Score rays marked `incomplete` (their renderer's answer involved what the
+  /// trace does not hold); by default they are replayed but left unscored.
+  bool score_incomplete = false;
 };
 
 }  // namespace vbsim

@@ -49,6 +49,8 @@ void KindStats::add(const KindStats& o) {
   for (int v = 0; v < kVerdictCount; ++v) verdicts[v] += o.verdicts[v];
   emission_fallbacks += o.emission_fallbacks;
   offset_fallbacks += o.offset_fallbacks;
+  incomplete_excluded += o.incomplete_excluded;
+  incomplete_scored += o.incomplete_scored;
   candidates.add(o.candidates);
   traversal.add(o.traversal);
 }
@@ -113,6 +115,8 @@ nlohmann::json ReplayStats::to_json(const nlohmann::json& config) const {
   j["verdicts"] = verdicts_json(t);
   j["emission_fallbacks"] = t.emission_fallbacks;
   j["offset_fallbacks"] = t.offset_fallbacks;
+  if (t.incomplete_excluded + t.incomplete_scored > 0)  // only traces that mark rays (captures) carry it
+    j["incomplete"] = {{"excluded", t.incomplete_excluded}, {"scored", t.incomplete_scored}};
   nlohmann::json kinds = nlohmann::json::object();
   for (int k = 0; k < kRayKindCount; ++k) {
     const KindStats& s = by_kind[k];
@@ -149,6 +153,10 @@ std::string ReplayStats::summary() const {
                      ray_kind_name(static_cast<RayKind>(k)), ks.rays, ks.verdicts[0], ks.verdicts[1],
                      ks.verdicts[2], ks.verdicts[3], ks.verdicts[4]);
   }
+  if (t.incomplete_excluded > 0)
+    s += fmt::format("incomplete: {} rays marked incomplete left unscored (their renderer's answer involved what the "
+                     "trace does not hold; --score-incomplete scores them)\n", t.incomplete_excluded);
+  if (t.incomplete_scored > 0) s += fmt::format("incomplete: {} rays marked incomplete scored as asked\n", t.incomplete_scored);
   const CandidateCounters& c = t.candidates;
   s += fmt::format("avoidance: {} candidates, {} suspects ({:.3f}%), {} rejected ({:.3f}% of candidates)\n",
                    c.candidates, c.suspects, 100.0 * ratio(c.suspects, c.candidates), c.rejected,

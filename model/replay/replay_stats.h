@@ -23,6 +23,8 @@ struct KindStats {
   std::array<uint64_t, kVerdictCount> verdicts{};
   uint64_t emission_fallbacks = 0;  ///< rays where an emission step lacked parent data
   uint64_t offset_fallbacks = 0;    ///< rays an offset placed off its reference (degenerate normal)
+  uint64_t incomplete_excluded = 0;  ///< rays marked `incomplete`, left unscored
+  uint64_t incomplete_scored = 0;    ///< rays marked `incomplete`, scored as asked (score_incomplete)
   CandidateCounters candidates;
   TraversalCounters traversal;
 

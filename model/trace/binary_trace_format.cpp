@@ -4,6 +4,8 @@
 
 #include <fmt/format.h>
 
+#include "trace/incomplete_reasons.h"
+
 namespace vbsim {
 
 namespace off = binary_trace_offset;
@@ -70,14 +72,14 @@ float load_le_f32(const uint8_t* p) {
   return x;
 }
 
-void encode_binary_trace_preamble(uint32_t header_bytes, uint8_t* out) {
+void encode_binary_trace_preamble(uint32_t header_bytes, uint8_t* out, uint32_t version) {
   std::memcpy(out, kBinaryTraceMagic, sizeof kBinaryTraceMagic);
-  store_u32(out + 8, kBinaryTraceLayoutVersion);
+  store_u32(out + 8, version);
   store_u32(out + 12, header_bytes);
 }
 
-void encode_binary_trace_record(const TraceRay& ray, uint8_t* out) {
-  std::memset(out, 0, kBinaryTraceRecordBytes);
+void encode_binary_trace_record(const TraceRay& ray, uint8_t* out, uint32_t version) {
+  std::memset(out, 0, binary_trace_record_bytes(version));
   uint16_t flags = 0;
   store_u64(out + off::id, static_cast<uint64_t>(ray.id));
   store_u64(out + off::parent, static_cast<uint64_t>(ray.parent));
@@ -110,15 +112,31 @@ void encode_binary_trace_record(const TraceRay& ray, uint8_t* out) {
     flags |= kHasSign;
     out[off::sign] = static_cast<uint8_t>(ray.sign);
   }
+  if (version == kBinaryTraceReferenceLayoutVersion) {
+    store_u32(out + off::reference_prim, static_cast<uint32_t>(ray.has_reference ? ray.reference_prim : -1));
+    if (ray.has_reference) flags |= kHasReference;
+    if (ray.has_reference_t) {
+      flags |= kHasReferenceT;
+      store_f32(out + off::reference_t, ray.reference_t);
+    }
+  } else if (ray.has_reference) {
+    throw TraceFieldProblem{"reference", "the header names no reference, so the layout (1) has no room for it"};
+  }
   store_u16(out + off::flags, flags);
+  store_u32(out + off::incomplete, ray.incomplete);
 }
 
-bool decode_binary_trace_record(const uint8_t* in, TraceRay& out, TraceFieldProblem& problem) {
+bool decode_binary_trace_record(const uint8_t* in, TraceRay& out, TraceFieldProblem& problem, uint32_t version) {
   uint16_t flags = load_u16(in + off::flags);
-  if (flags & ~kBinaryTraceKnownFlags)
-    return fail(problem, "flags", fmt::format("unknown flag bits 0x{:04x}", flags & ~kBinaryTraceKnownFlags));
-  if (load_le_u32(in + off::reserved) != 0)
-    return fail(problem, "reserved", "must be zero");
+  const uint16_t known =
+      version == kBinaryTraceReferenceLayoutVersion ? kBinaryTraceReferenceKnownFlags : kBinaryTraceKnownFlags;
+  if (flags & ~known) return fail(problem, "flags", fmt::format("unknown flag bits 0x{:04x}", flags & ~known));
+  if ((flags & kHasReferenceT) && !(flags & kHasReference))
+    return fail(problem, "reference.t", "flag has_reference_t set without has_reference");
+  const uint32_t incomplete = load_le_u32(in + off::incomplete);
+  if (incomplete & ~kIncompleteKnownBits)
+    return fail(problem, "incomplete",
+                fmt::format("unknown reason bits 0x{:x}", incomplete & ~kIncompleteKnownBits));
   if ((flags & kHasExpectT) && !(flags & kHasExpect))
     return fail(problem, "expect.t", "flag has_expect_t set without has_expect");
   out = TraceRay{};
@@ -155,6 +173,15 @@ bool decode_binary_trace_record(const uint8_t* in, TraceRay& out, TraceFieldProb
   if (flags & kHasExpectT) {
     out.has_expect_t = true;
     out.expect_t = load_f64(in + off::expect_t);
+  }
+  out.incomplete = incomplete;
+  if (flags & kHasReference) {
+    out.has_reference = true;
+    out.reference_prim = static_cast<int32_t>(load_le_u32(in + off::reference_prim));
+  }
+  if (flags & kHasReferenceT) {
+    out.has_reference_t = true;
+    out.reference_t = load_le_f32(in + off::reference_t);
   }
   return true;
 }

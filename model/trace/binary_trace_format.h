@@ -19,6 +19,10 @@ namespace vbsim {
 
 constexpr char kBinaryTraceMagic[8] = {'V', 'B', 'S', 'I', 'M', 'T', 'R', 'B'};
 constexpr uint32_t kBinaryTraceLayoutVersion = 1;
+/// Layout 2: version 1's record followed by the reference answer (written
+/// when the header names a `reference`).
+constexpr uint32_t kBinaryTraceReferenceLayoutVersion = 2;
+constexpr std::size_t kBinaryTraceReferenceRecordBytes = 104;
 constexpr std::size_t kBinaryTracePreambleBytes = 16;  ///< magic + version + header length
 constexpr std::size_t kBinaryTraceRecordBytes = 96;
 constexpr uint32_t kBinaryTraceMaxHeaderBytes = 1u << 24;  ///< readers reject longer headers
@@ -40,7 +44,7 @@ constexpr std::size_t expect_t = 80;     ///< f64, valid with kHasExpectT
 constexpr std::size_t kind = 88;         ///< u8, RayKind (0 primary .. 4 shadow)
 constexpr std::size_t sign = 89;         ///< u8, 0 or 1, valid with kHasSign
 constexpr std::size_t flags = 90;        ///< u16, BinaryTraceFlag bits
-constexpr std::size_t reserved = 92;     ///< u32, must be 0
+constexpr std::size_t incomplete = 92;   ///< u32, IncompleteReason bits (0: none; was `reserved`)
 }  // namespace binary_trace_offset
 
 /// Which optional fields a record carries. A field whose bit is clear is
@@ -52,22 +56,37 @@ enum BinaryTraceFlag : uint16_t {
   kHasExpect = 1u << 3,
   kHasExpectT = 1u << 4,  ///< only together with kHasExpect
   kHasSign = 1u << 5,
+  kHasReference = 1u << 6,   ///< layout 2 only
+  kHasReferenceT = 1u << 7,  ///< layout 2 only, with kHasReference
 };
 constexpr uint16_t kBinaryTraceKnownFlags = 0x3f;
+constexpr uint16_t kBinaryTraceReferenceKnownFlags = 0xff;
+namespace binary_trace_offset {
+constexpr std::size_t reference_prim = 96;  ///< layout 2: i32, valid with kHasReference
+constexpr std::size_t reference_t = 100;    ///< layout 2: f32, valid with kHasReferenceT
+}  // namespace binary_trace_offset
+
+/// Record bytes of layout `version` (1 or 2).
+constexpr std::size_t binary_trace_record_bytes(uint32_t version) {
+  return version == kBinaryTraceReferenceLayoutVersion ? kBinaryTraceReferenceRecordBytes : kBinaryTraceRecordBytes;
+}
 
 /// Bytes the header JSON occupies in the file: n rounded up to a multiple of 8.
 constexpr std::size_t binary_trace_padded_header_bytes(std::size_t n) { return (n + 7) / 8 * 8; }
 
 /// Writes the 16-byte preamble for a header JSON of `header_bytes` bytes.
-void encode_binary_trace_preamble(uint32_t header_bytes, uint8_t* out);
+void encode_binary_trace_preamble(uint32_t header_bytes, uint8_t* out, uint32_t version = kBinaryTraceLayoutVersion);
 
-/// Writes `ray` as one record (kBinaryTraceRecordBytes bytes at `out`).
-void encode_binary_trace_record(const TraceRay& ray, uint8_t* out);
+/// Writes `ray` as one record (binary_trace_record_bytes(version) bytes at
+/// `out`); layout 1 cannot hold a reference answer (a TraceFieldProblem).
+void encode_binary_trace_record(const TraceRay& ray, uint8_t* out, uint32_t version = kBinaryTraceLayoutVersion);
 
-/// Reads one record into `out`. Rejects what the layout itself forbids
-/// (unknown flag bits, non-zero reserved bytes, a sign byte other than 0/1,
-/// expect.t without expect); the format's ray rules are check_trace_ray's.
-bool decode_binary_trace_record(const uint8_t* record, TraceRay& out, TraceFieldProblem& problem);
+/// Reads one record of layout `version` into `out`. Rejects what the layout
+/// itself forbids (unknown flag bits or incomplete bits, a sign byte other
+/// than 0/1, expect.t without expect, reference.t without reference); the
+/// format's ray rules are check_trace_ray's.
+bool decode_binary_trace_record(const uint8_t* record, TraceRay& out, TraceFieldProblem& problem,
+                                uint32_t version = kBinaryTraceLayoutVersion);
 
 /// Little-endian loads used by the readers of the preamble and records.
 uint32_t load_le_u32(const uint8_t* p);

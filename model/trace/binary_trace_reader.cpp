@@ -27,11 +27,13 @@ BinaryTraceReader::BinaryTraceReader(std::string path, std::ifstream in) : path_
     throw TraceError::in_file(path_, "not a binary vbsim trace (no \"VBSIMTRB\" magic)");
   if (got < sizeof preamble)
     throw TraceError::in_file(path_, "truncated: the file ends inside its 16-byte preamble");
-  uint32_t version = load_le_u32(preamble + 8);
-  if (version != kBinaryTraceLayoutVersion)
+  const uint32_t version = load_le_u32(preamble + 8);
+  if (version != kBinaryTraceLayoutVersion && version != kBinaryTraceReferenceLayoutVersion)
     throw TraceError::in_file(path_, fmt::format("unsupported binary layout version {} (this "
-                                                 "reader reads {})",
-                                                 version, kBinaryTraceLayoutVersion));
+                                                 "reader reads {} and {})",
+                                                 version, kBinaryTraceLayoutVersion,
+                                                 kBinaryTraceReferenceLayoutVersion));
+  version_ = version;
   uint32_t header_bytes = load_le_u32(preamble + 12);
   if (header_bytes == 0 || header_bytes > kBinaryTraceMaxHeaderBytes)
     throw TraceError::in_header(path_, "", fmt::format("implausible header length {}", header_bytes));
@@ -63,7 +65,7 @@ BinaryTraceReader::BinaryTraceReader(std::string path, std::ifstream in) : path_
   }
 
   records_ = RecordFileReader(path_, std::move(in), kBinaryTracePreambleBytes + padded,
-                              {kBinaryTraceRecordBytes, kRecordsPerRead, ""});
+                              {binary_trace_record_bytes(version_), kRecordsPerRead, ""});
 }
 
 bool BinaryTraceReader::next(TraceRay& out) {
@@ -71,7 +73,7 @@ bool BinaryTraceReader::next(TraceRay& out) {
   if (record == nullptr) return false;
   int64_t index = records_.records_read() - 1;
   TraceFieldProblem problem;
-  if (!decode_binary_trace_record(record, out, problem) || !validator_.check(out, problem))
+  if (!decode_binary_trace_record(record, out, problem, version_) || !validator_.check(out, problem))
     throw TraceError::at_record(path_, index, problem.field, problem.message);
   return true;
 }

@@ -37,7 +37,8 @@ class BinaryTraceReader final : public TraceSource {
   std::string path_;
   TraceHeader header_;
   TraceRayValidator validator_;
-  RecordFileReader records_;  ///< the 96-byte records after the header
+  uint32_t version_ = 1;      ///< layout 1, or 2 (with the reference answers)
+  RecordFileReader records_;  ///< the 96-byte (layout 2: 104-byte) records after the header
 };
 
 }  // namespace vbsim

@@ -25,6 +25,7 @@ class BinaryTraceWriter final : public TraceSink {
 
  private:
   std::string path_;
+  uint32_t version_;  ///< layout 2 when the header names a reference, else 1
   RecordFileWriter records_;
   TraceRayValidator validator_;
 };

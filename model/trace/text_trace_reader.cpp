@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "trace/incomplete_reasons.h"
 #include "trace/trace_header_json.h"
 #include "trace/trace_json_values.h"
 
@@ -87,6 +88,36 @@ void parse_trace_ray(const json& object, TraceRay& out) {
       out.expect_t = json_double(*t, "expect.t");
     }
   }
+  if (const json* v = find_field(object, "reference")) {
+    if (!v->is_object())
+      throw TraceFieldProblem{"reference", fmt::format("expected an object {{\"prim\": k, \"t\": t}} or "
+                                                       "{{\"occluded\": true|false}}, got {}", v->dump())};
+    out.has_reference = true;
+    if (const json* occ = find_field(*v, "occluded")) {
+      if (!occ->is_boolean()) throw TraceFieldProblem{"reference.occluded", "expected true or false"};
+      out.reference_prim = occ->get<bool>() ? kReferenceOccluded : -1;
+    } else {
+      const json* prim = find_field(*v, "prim");
+      if (!prim) throw TraceFieldProblem{"reference.prim", "missing (required in reference, unless occluded)"};
+      out.reference_prim = json_int32(*prim, "reference.prim");
+      if (const json* t = find_field(*v, "t"); t && !t->is_null()) {
+        out.has_reference_t = true;
+        out.reference_t = json_float32(*t, "reference.t");
+      }
+    }
+  }
+  if (const json* v = find_field(object, "incomplete")) {
+    if (!v->is_array())
+      throw TraceFieldProblem{"incomplete", fmt::format("expected an array of reasons ({}), got {}",
+                                                        incomplete_reason_names(), v->dump())};
+    for (const json& name : *v) {
+      uint32_t bit = 0;
+      if (!name.is_string() || !parse_incomplete_reason(name.get<std::string>(), bit))
+        throw TraceFieldProblem{"incomplete", fmt::format("unknown reason {} (expected one of {})", name.dump(),
+                                                          incomplete_reason_names())};
+      out.incomplete |= bit;
+    }
+  }
 }
 
 }  // namespace
@@ -125,6 +156,9 @@ bool TextTraceReader::next(TraceRay& out) {
   }
   if (!validator_.check(out, problem))
     throw TraceError::at_line(path_, line_number_, problem.field, problem.message);
+  if (out.has_reference && header_.reference.empty())
+    throw TraceError::at_line(path_, line_number_, "reference",
+                              "the header names no reference (its \"reference\" field says what gave the answers)");
   return true;
 }
 

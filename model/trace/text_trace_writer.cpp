@@ -5,6 +5,7 @@
 #include <cstring>
 #include <iterator>
 
+#include "trace/incomplete_reasons.h"
 #include "trace/trace_header_json.h"
 #include "trace/trace_json_values.h"
 
@@ -61,6 +62,30 @@ void append_trace_ray_json(fmt::memory_buffer& out, const TraceRay& ray) {
       append_json_double(out, ray.expect_t);
     }
     out.push_back('}');
+  }
+  if (ray.has_reference) {
+    if (ray.reference_prim == kReferenceOccluded) {
+      text(out, ",\"reference\":{\"occluded\":true}");
+    } else if (ray.reference_prim == -1 && ray.kind == RayKind::Shadow) {
+      text(out, ",\"reference\":{\"occluded\":false}");
+    } else {
+      fmt::format_to(it, ",\"reference\":{{\"prim\":{}", ray.reference_prim);
+      if (ray.has_reference_t) {
+        text(out, ",\"t\":");
+        append_json_float(out, ray.reference_t);
+      }
+      out.push_back('}');
+    }
+  }
+  if (ray.incomplete != 0) {
+    text(out, ",\"incomplete\":[");
+    bool first = true;
+    for (int k = 0; k < kIncompleteReasonCount; ++k)
+      if (ray.incomplete & (1u << k)) {
+        fmt::format_to(it, "{}\"{}\"", first ? "" : ",", incomplete_reason_name(k));
+        first = false;
+      }
+    out.push_back(']');
   }
   out.push_back('}');
 }

@@ -52,6 +52,10 @@ TraceHeader parse_trace_header(const json& object, const std::string& trace_path
     header.generator = json_string(*generator, "generator");
   if (const json* description = find_field(object, "description"))
     header.description = json_string(*description, "description");
+  if (const json* reference = find_field(object, "reference")) {
+    header.reference = json_string(*reference, "reference");
+    if (header.reference.empty()) throw TraceFieldProblem{"reference", "empty (leave it out when the rays carry none)"};
+  }
   if (const json* transform = find_field(object, "transform")) {
     std::array<float, 16> m;
     json_float32_array(*transform, "transform", m.data(), m.size());
@@ -83,6 +87,10 @@ std::string trace_header_json(const TraceHeader& header) {
   if (!header.description.empty()) {
     text(",\"description\":");
     append_json_string(out, header.description, "description");
+  }
+  if (!header.reference.empty()) {
+    text(",\"reference\":");
+    append_json_string(out, header.reference, "reference");
   }
   if (header.transform) {
     text(",\"transform\":[");

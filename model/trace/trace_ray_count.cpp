@@ -29,7 +29,8 @@ uint64_t count_trace_rays(const std::string& path) {
     const uint64_t first_record = kBinaryTracePreambleBytes + (header + 7) / 8 * 8;
     if (std::fseek(f.get(), 0, SEEK_END) != 0) return 0;
     const long size = std::ftell(f.get());
-    return size > 0 && uint64_t(size) > first_record ? (uint64_t(size) - first_record) / kBinaryTraceRecordBytes : 0;
+    const uint64_t record = binary_trace_record_bytes(read_u32_le(pre + 8));
+    return size > 0 && uint64_t(size) > first_record ? (uint64_t(size) - first_record) / record : 0;
   }
   // Text: count lines whose first non-blank character exists and is not '#'.
   std::rewind(f.get());

@@ -24,7 +24,15 @@ struct TraceHeader {
   /// What wrote the file (version, command line, input checksums) as one
   /// compact JSON object; empty when absent. Optional, descriptive only.
   std::string provenance;
+  /// What gave the rays' `reference` answers (e.g. the capturing renderer's
+  /// Embree); empty when the rays carry none. In the binary form it selects
+  /// the layout that holds them (docs/trace-binary.md).
+  std::string reference;
 };
+
+/// TraceRay::reference_prim of an occlusion query its renderer found occluded
+/// (by a triangle it does not name).
+constexpr int32_t kReferenceOccluded = -2;
 
 struct TraceRay {
   int64_t id = 0;
@@ -56,6 +64,15 @@ struct TraceRay {
   int32_t expect_prim = -1;  ///< -1: the exact answer is a miss
   bool has_expect_t = false;
   double expect_t = 0.0;     ///< exact hit distance rounded to double
+  /// IncompleteReason bits (trace/incomplete_reasons.h): why the renderer's
+  /// answer for this ray depends on what the trace does not hold; 0 = none.
+  uint32_t incomplete = 0;
+  /// The answer the renderer's own tester gave (the header's `reference`):
+  /// a triangle, -1 for none (a miss, or not occluded), kReferenceOccluded.
+  bool has_reference = false;
+  int32_t reference_prim = -1;
+  bool has_reference_t = false;  ///< with a triangle: its hit distance
+  float reference_t = 0.0f;
 };
 
 }  // namespace vbsim

@@ -4,6 +4,8 @@
 
 #include <fmt/format.h>
 
+#include "trace/incomplete_reasons.h"
+
 namespace vbsim {
 
 namespace {
@@ -35,6 +37,10 @@ bool check_trace_ray(const TraceRay& ray, int32_t triangle_count, TraceFieldProb
     return fail(problem, "parent", fmt::format("{} is below -1 (-1 means no parent)", ray.parent));
   if (static_cast<int>(ray.kind) >= kRayKindCount)
     return fail(problem, "kind", fmt::format("unknown kind {}", static_cast<int>(ray.kind)));
+  if (ray.parent >= 0 && ray.kind == RayKind::Primary)
+    return fail(problem, "kind",
+                fmt::format("primary (the default), but the ray has parent {}: a camera ray has no parent; give "
+                            "the child's kind (reflect, refract, diffuse or shadow)", ray.parent));
   if (!is_finite(ray.o))
     return fail(problem, "o", fmt::format("origin {} is not finite", vec_text(ray.o)));
   if (!is_finite(ray.d))
@@ -67,6 +73,19 @@ bool check_trace_ray(const TraceRay& ray, int32_t triangle_count, TraceFieldProb
         return fail(problem, "expect.t", fmt::format("{} is not finite", ray.expect_t));
     }
   }
+  if (ray.has_reference_t && !ray.has_reference)
+    return fail(problem, "reference.t", "given without a reference answer");
+  if (ray.has_reference) {
+    if (ray.reference_prim < kReferenceOccluded)
+      return fail(problem, "reference.prim", fmt::format("{} is below -1", ray.reference_prim));
+    if (ray.reference_prim >= 0 && !check_prim(ray.reference_prim, triangle_count, "reference.prim", problem))
+      return false;
+    if (ray.has_reference_t && (ray.reference_prim < 0 || !std::isfinite(ray.reference_t)))
+      return fail(problem, "reference.t", "a hit distance needs a hit (prim >= 0) and must be finite");
+  }
+  if (ray.incomplete & ~kIncompleteKnownBits)
+    return fail(problem, "incomplete",
+                fmt::format("unknown reason bits 0x{:x}", ray.incomplete & ~kIncompleteKnownBits));
   return true;
 }
 

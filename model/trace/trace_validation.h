@@ -10,11 +10,12 @@
 
 namespace vbsim {
 
-/// Checks one ray on its own: id >= 0, parent >= -1, a known kind, finite
+/// Checks one ray on its own: id >= 0, parent >= -1, a known kind (not
+/// primary when a parent is given), finite
 /// origin, finite non-zero direction, 0 <= tmin <= tmax (tmax may be +inf,
 /// never NaN), parent_prim and expect.prim in [-1, triangle_count) (upper bound
 /// skipped when triangle_count is -1), finite optional values, sign 0/1/absent,
-/// expect.t only with a hit in expect. On failure fills `problem`, returns false.
+/// expect.t only with a hit in expect, known incomplete bits. On failure fills `problem`, returns false.
 bool check_trace_ray(const TraceRay& ray, int32_t triangle_count, TraceFieldProblem& problem);
 
 /// check_trace_ray plus the duplicate-id rule, over a stream of rays.

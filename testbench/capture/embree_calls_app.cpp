@@ -2,7 +2,8 @@
 // query entry point (1, 4, 8, 16-wide, 1M, 1Mp, NM, Np; intersect and
 // occluded) on a scene built every way Embree allows (shared, new and
 // RTCBuffer buffers, a strided vertex buffer, a geomID set by the caller, a
-// quad mesh and a disabled mesh, which cannot be captured), spawns children
+// quad mesh, captured as the two triangles Embree splits each quad into, and
+// a disabled mesh, which cannot be captured), spawns children
 // from hits (shadow, reflect, refract, diffuse; at the hit point or offset
 // along the normal), and writes its own record of every ray, Embree's answer
 // and the intended parent and kind, so the tests can hold the capture against
@@ -243,7 +244,7 @@ int main(int argc, char** argv) {
   rtcCommitGeometry(g);
   rtcAttachGeometry(scene, g);
   rtcReleaseGeometry(g);
-  // geomID 2: a quad mesh at x in [20, 30] (not captured: not triangles).
+  // geomID 2: a quad mesh at x in [20, 30] (captured as two triangles).
   g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_QUAD);
   float* qv = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 12, 4));
   const float quad_v[] = {20, -5, 1, 30, -5, 1, 30, 5, 1, 20, 5, 1};

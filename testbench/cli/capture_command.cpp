@@ -7,6 +7,7 @@
 #include "capture/application_launch.h"
 #include "capture/capture_merge.h"
 #include "commands.h"
+#include "provenance/provenance.h"
 
 namespace vbsim::cli {
 
@@ -15,7 +16,7 @@ namespace {
 struct CaptureArgs {
   std::string out;
   std::vector<std::string> command;
-  bool binary = false, keep_raw = false, strip_offsets = false;
+  bool binary = false, keep_raw = false, strip_offsets = false, allow_partial = false;
   capture::LinkRules rules;
 };
 
@@ -34,11 +35,17 @@ void run_capture(const CaptureArgs& a) {
   opt.binary = a.binary;
   opt.strip_offsets = a.strip_offsets;
   opt.command = a.command;
+  opt.provenance = provenance_line({});  // the application's scene comes from memory, not a file
   const capture::MergeResult merged = capture::merge_capture(raw.string(), a.out, opt);
   if (!a.keep_raw) fs::remove_all(raw);
   fmt::print("{}", merged.summary);
-  fmt::print("  next: vbsim oracle {} -o scored{}, then vbsim replay or vbsim score\n", merged.trace_path,
-             a.binary ? ".vbt" : ".jsonl");
+  if (merged.incomplete_rays > 0 && !a.allow_partial)
+    throw std::runtime_error(fmt::format(
+        "{} rays of {} are incomplete: the trace cannot reproduce what Embree answered for them (counted by reason "
+        "above and in capture.json). The trace is written with those rays marked; give --allow-partial to accept it",
+        merged.incomplete_rays, merged.trace_path));
+  fmt::print("  next: vbsim oracle {} -o scored{}, then vbsim replay or vbsim score; vbsim compare-reference compares "
+             "a replay's --hits with embree_hits.jsonl\n", merged.trace_path, a.binary ? ".vbt" : ".jsonl");
 }
 
 }  // namespace
@@ -63,6 +70,9 @@ void add_capture_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_flag("--strip-offsets", args->strip_offsets,
                 "children start at their parent's hit point with tmin 0 (the application's own offsets removed)");
+  cmd->add_flag("--allow-partial", args->allow_partial,
+                "exit 0 even when rays are incomplete (their answers involve geometry or filter functions the "
+                "trace does not hold; they stay marked and unscored)");
   cmd->add_flag("--keep-raw", args->keep_raw, "keep the shim's raw files in OUT/raw");
   cmd->add_option("command", args->command, "the application and its arguments, after `--`")->required();
   cmd->callback([args] { run_capture(*args); });

@@ -10,6 +10,7 @@
 #include "commands.h"
 #include "scene/scene.h"
 #include "trace/checked_trace_source.h"
+#include "trace/incomplete_reasons.h"
 #include "trace/trace_file.h"
 
 namespace vbsim::cli {
@@ -113,7 +114,9 @@ int run_check(const CheckArgs& a) {
   const char* word = position_word(*source);
   std::vector<TraceFinding> findings;
   TraceRay ray;
-  int64_t rays = 0, unreadable = 0;
+  int64_t rays = 0, unreadable = 0, incomplete = 0;
+  int64_t incomplete_by_reason[kIncompleteReasonCount] = {};
+  int64_t with_reference = 0, reference_scored = 0, reference_agrees = 0, first_disagreement = -1;
   for (;;) {
     try {
       if (!source->next(ray)) break;
@@ -126,7 +129,23 @@ int run_check(const CheckArgs& a) {
       break;
     }
     ++rays;
+    if (ray.incomplete != 0) {
+      ++incomplete;
+      for (int k = 0; k < kIncompleteReasonCount; ++k) incomplete_by_reason[k] += (ray.incomplete >> k) & 1u;
+    }
     const int64_t pos = last_ray_position(*source, rays + unreadable);
+    if (ray.has_reference) {  // the renderer's own answer against the exact one
+      ++with_reference;
+      if (ray.has_expect) {
+        ++reference_scored;
+        const bool occluding = ray.reference_prim == kReferenceOccluded;
+        const bool agrees = ray.kind == RayKind::Shadow || occluding
+                                ? (ray.expect_prim >= 0) == (occluding || ray.reference_prim >= 0)
+                                : ray.reference_prim == ray.expect_prim;
+        reference_agrees += agrees;
+        if (!agrees && first_disagreement < 0) first_disagreement = pos;
+      }
+    }
     findings.clear();
     checker.check(ray, pos, word, findings);
     bool missing = false;
@@ -150,6 +169,26 @@ int run_check(const CheckArgs& a) {
              report.counts_text());
   fmt::print("; parent data checked within the last {} rays, {} children's parents not among them\n",
              checker.window(), checker.parents_not_checked());
+  if (incomplete > 0) {  // not a fault of the trace: a statement about what it could not hold
+    std::string reasons;
+    for (int k = 0; k < kIncompleteReasonCount; ++k)
+      if (incomplete_by_reason[k] > 0)
+        reasons += fmt::format("{}{} {}", reasons.empty() ? "" : ", ", incomplete_reason_name(k), incomplete_by_reason[k]);
+    fmt::print("vbsim check: {} ray{} marked incomplete ({}): their renderer's answers involved what the trace does "
+               "not hold; replays leave them unscored unless --score-incomplete\n",
+               incomplete, incomplete == 1 ? "" : "s", reasons);
+  }
+  if (with_reference > 0) {
+    if (reference_scored > 0)
+      fmt::print("vbsim check: {} rays carry the answer of {}: {} of the {} with an exact answer agree with it "
+                 "(the same triangle, or occluded alike), {} differ{}\n",
+                 with_reference, source->header().reference, reference_agrees, reference_scored,
+                 reference_scored - reference_agrees,
+                 first_disagreement >= 0 ? fmt::format(" (the first at {} {})", word, first_disagreement) : "");
+    else
+      fmt::print("vbsim check: {} rays carry the answer of {}; none has an exact answer to hold it against (vbsim "
+                 "oracle TRACE -o OUT fills them in)\n", with_reference, source->header().reference);
+  }
   if (checker.order_unchecked() > 0)
     fmt::print("vbsim check: {} children whose parent was not in the window could not be ordered (ids do not ascend)\n",
                checker.order_unchecked());

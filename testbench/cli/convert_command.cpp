@@ -61,7 +61,8 @@ void run_convert(const ConvertArgs& a) {
     // rtcore-systemc reads a mesh, not vbsim's header: the scene as a replay
     // loads it (with the header's transform), one PLY triangle per triangle id.
     const Scene scene = load_scene(source.header().scene_path, source.header().transform);
-    write_ply_scene(a.scene_out, scene.triangles);
+    write_ply_scene(a.scene_out, scene.triangles, {},
+                    "vbsim-provenance " + provenance_line({a.in, source.header().scene_path}));
   }
   fmt::print(stderr, "{}", source.warning_lines("vbsim convert", false));
   if (!a.quiet)

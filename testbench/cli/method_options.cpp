@@ -39,6 +39,13 @@ void add_method_options(CLI::App& app, MethodOptions& o, const std::string& defa
   app.add_option("--vb-tests", o.vb_tests, "validity-bit: epsilon tests, comma list of normal,ray,component [normal,ray]");
   app.add_option("--vb-component-scale", o.vb_component_scale, "validity-bit: component test multiplier [0.577]");
   add_parent_window_option(app, o.parent_window);
+  add_score_incomplete_option(app, o.score_incomplete);
+}
+
+void add_score_incomplete_option(CLI::App& cmd, bool& score_incomplete) {
+  cmd.add_flag("--score-incomplete", score_incomplete,
+               "also score rays marked `incomplete` (their renderer's answer involved geometry or filter functions "
+               "the trace does not hold); by default they are replayed but left unscored");
 }
 
 void add_parent_window_option(CLI::App& cmd, int64_t& window) {
@@ -96,6 +103,7 @@ ReplayOptions resolve_method_options(const MethodOptions& o) {
     throw UsageError(e.what());
   }
   opt.parent_window = o.parent_window;
+  opt.score_incomplete = o.score_incomplete;
   return opt;
 }
 

@@ -22,6 +22,7 @@ struct MethodOptions {
   std::optional<float> vb_eps, vb_component_scale;
   std::optional<int> vb_guard_bits, vb_min_exponent;
   int64_t parent_window = ParentRayStore::kDefaultWindow;  ///< --parent-window
+  bool score_incomplete = false;  ///< --score-incomplete
 };
 
 /// Registers the options on `app`, storing into `o`.
@@ -32,6 +33,9 @@ void add_method_options(CLI::App& app, MethodOptions& o, const std::string& defa
 /// ConfigError naming the file and field for a bad --config file (a runtime
 /// error), UsageError naming the option for a bad command-line value.
 ReplayOptions resolve_method_options(const MethodOptions& o);
+
+/// Registers --score-incomplete (score rays marked `incomplete`) on `cmd`.
+void add_score_incomplete_option(CLI::App& cmd, bool& score_incomplete);
 
 /// A `--testers` comma list; throws UsageError naming an unknown tester or an empty list.
 std::vector<TesterKind> parse_tester_list(const std::string& list, const std::string& option = "--testers");

@@ -35,6 +35,7 @@ struct ScoreArgs {
   int threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   bool quiet = false;
   int64_t parent_window = ParentRayStore::kDefaultWindow;
+  bool score_incomplete = false;
   bool merge = false;
   bool testers_given = false;
   std::string mode = "functional", preset, cycle_testers;
@@ -117,7 +118,8 @@ void run_score_command(const ScoreArgs& a) {
       inputs.push_back(t);
       if (terminal) total += count_trace_rays(t);
     }
-  const std::vector<ScoreConfig> configs = score_configs(methods, testers);
+  std::vector<ScoreConfig> configs = score_configs(methods, testers);
+  for (ScoreConfig& c : configs) c.options.score_incomplete = a.score_incomplete;
   ProgressMeter meter(fmt::format("score: {} configurations", configs.size()), total, "rays", terminal);
   run.progress = [&meter](uint64_t n) { meter.add(n); };
   run.parent_window = a.parent_window;
@@ -154,6 +156,7 @@ void add_score_command(CLI::App& app) {
   cmd->add_option("--cycle-testers", args->cycle_testers,
                   "cycle mode: the testers whose configurations are timed [every tester of --testers]");
   add_parent_window_option(*cmd, args->parent_window);
+  add_score_incomplete_option(*cmd, args->score_incomplete);
   cmd->add_flag("--quiet,-q", args->quiet, "print nothing on success");
   cmd->add_flag("--merge", args->merge,
                 "the paths are score tables (--out JSON) of runs over disjoint families: write their union");

@@ -136,6 +136,95 @@ class Errors(unittest.TestCase):
                     w.ray(id=0, o=(0, 0, 5), d=(0, 0, -1), expect=(-1, 2.0))
             self.assertEqual(os.listdir(tmp), [])
 
+    def test_what_every_reader_refuses(self):
+        """A duplicate id and a child of kind primary: refused by the writer as vbsim's readers refuse them."""
+        with tempfile.TemporaryDirectory() as tmp:
+            for name in ("d.jsonl", "d.vbt"):
+                path = os.path.join(tmp, name)
+                with self.assertRaisesRegex(TraceWriteError, r"(line 4|record 2): field 'id': 0 was given before"):
+                    with TraceWriter(path, scene="s.ply") as w:
+                        w.ray(id=0, o=(0, 0, 5), d=(0, 0, -1))
+                        w.ray(id=1, o=(0, 0, 5), d=(0, 0, -1))
+                        w.ray(id=0, o=(0, 0, 5), d=(0, 0, -1))
+                with self.assertRaisesRegex(TraceWriteError, r"field 'id': 3 was given before"):  # not in order
+                    with TraceWriter(path, scene="s.ply") as w:
+                        for i in (5, 3, 9, 4, 3):
+                            w.ray(id=i, o=(0, 0, 5), d=(0, 0, -1))
+                with self.assertRaisesRegex(TraceWriteError, r"field 'kind': primary .*parent 0"):
+                    with TraceWriter(path, scene="s.ply") as w:
+                        w.ray(id=0, o=(0, 0, 5), d=(0, 0, -1))
+                        w.ray(id=1, parent=0, o=(0, 0, 5), d=(0, 0, -1), parent_prim=1)
+                self.assertEqual(os.listdir(tmp), [])
+            # What the writer refuses, vbsim refuses too (the text form written by hand).
+            path = os.path.join(tmp, "h.jsonl")
+            with open(path, "w") as f:
+                f.write('{"format":"vbsim-trace","version":1,"scene":"s.ply"}\n{"id":0,"o":[0,0,5],"d":[0,0,-1]}\n'
+                        '{"id":1,"parent":0,"o":[0,0,5],"d":[0,0,-1],"parent_prim":1}\n')
+            r = subprocess.run([VBSIM, "check", path], capture_output=True, text=True)
+            self.assertEqual(r.returncode, 1)
+            self.assertIn("h.jsonl:3: field 'kind': primary", r.stdout + r.stderr)
+
+    def test_a_value_beyond_float32_is_one_clear_error(self):
+        """1e39 overflows float32: the field's error, and no numpy warning before it."""
+        code = ("import sys; sys.path.insert(0, %r)\n"
+                "from trace_writer import TraceWriter, TraceWriteError\n"
+                "try:\n"
+                "    with TraceWriter(%r, scene='s.ply') as w:\n"
+                "        w.ray(id=0, o=(1e39, 0, 0), d=(0, 0, -1))\n"
+                "except TraceWriteError as e:\n"
+                "    print(e)\n")
+        with tempfile.TemporaryDirectory() as tmp:
+            r = subprocess.run([sys.executable, "-W", "error", "-c",
+                                code % (os.path.join(ROOT, "scripts"), os.path.join(tmp, "b.jsonl"))],
+                               capture_output=True, text=True)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            self.assertEqual(r.stderr, "")
+            self.assertIn("line 2: field 'o'", r.stdout)
+            self.assertIn("not finite", r.stdout)
+
+
+class OneModule(unittest.TestCase):
+    def test_the_writer_stands_alone_and_says_when_numpy_is_missing(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            with open(os.path.join(ROOT, "scripts", "trace_writer.py")) as src, \
+                    open(os.path.join(tmp, "trace_writer.py"), "w") as dst:
+                dst.write(src.read())
+            # Alone in a directory: it imports and writes a trace that vbsim reads.
+            code = ("from trace_writer import TraceWriter\n"
+                    "with TraceWriter('a.vbt', scene='s.ply') as w:\n"
+                    "    w.ray(id=0, o=(0, 0, 5), d=(0, 0, -1), incomplete=('instance', 'filter'))\n")
+            r = subprocess.run([sys.executable, "-c", code], cwd=tmp, capture_output=True, text=True)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            vbsim("convert", os.path.join(tmp, "a.vbt"), "-o", os.path.join(tmp, "a.jsonl"))
+            with open(os.path.join(tmp, "a.jsonl")) as f:
+                self.assertEqual(json.loads(f.read().splitlines()[1])["incomplete"], ["instance", "filter"])
+            # Without numpy: an ImportError that says what to do.
+            code = "import sys; sys.modules['numpy'] = None\nimport trace_writer\n"
+            r = subprocess.run([sys.executable, "-c", code], cwd=tmp, capture_output=True, text=True)
+            self.assertNotEqual(r.returncode, 0)
+            self.assertIn("trace_writer needs numpy", r.stderr)
+            self.assertIn("python3-numpy", r.stderr)
+
+
+class ReferenceLayout(unittest.TestCase):
+    def test_layout_2_reads_with_its_dtype(self):
+        """A trace with reference answers converts to layout 2; read_binary_trace picks its dtype."""
+        from read_binary_trace import describe
+        with tempfile.TemporaryDirectory() as tmp:
+            text = os.path.join(tmp, "r.jsonl")
+            with open(text, "w") as f:
+                f.write('{"format":"vbsim-trace","version":1,"scene":"s.ply","reference":"Embree"}\n'
+                        '{"id":0,"o":[0,0,5],"d":[0,0,-1],"reference":{"prim":3,"t":1.5}}\n'
+                        '{"id":1,"kind":"shadow","o":[0,0,5],"d":[0,0,1],"reference":{"occluded":true}}\n')
+            vbt = os.path.join(tmp, "r.vbt")
+            vbsim("convert", text, "-o", vbt)
+            header, recs = read_binary_trace(vbt)
+            self.assertEqual(header["reference"], "Embree")
+            self.assertEqual(recs.dtype.itemsize, 104)
+            self.assertEqual(recs["reference_prim"].tolist(), [3, -2])
+            self.assertEqual(describe(recs[0])["reference"], {"prim": 3, "t": 1.5})
+            self.assertEqual(describe(recs[1])["reference"], {"occluded": True})
+
 
 def doc_example(language):
     """The code block after '<!-- example: LANGUAGE writer -->' in docs/trace-format.md."""

@@ -80,12 +80,15 @@ std::string bits_key(bool occluded, const float* o, const float* d, float tnear,
   return k;
 }
 
-/// The documented numbering for the app's scene: captured triangle geometries
-/// by ascending geomID (0: floor, 2 triangles; 1: slanted, 1; 7: wall, 2).
-int expected_triangle(int geom, int prim) {
+/// The documented numbering for the app's scene: captured triangle and quad
+/// geometries by ascending geomID (0: floor, 2 triangles; 1: slanted, 1; 2:
+/// one quad, split as Embree splits it into (v0, v1, v3), where u + v <= 1,
+/// and (v2, v3, v1); 7: wall, 2).
+int expected_triangle(int geom, int prim, float u, float v) {
   if (geom == 0) return prim;
   if (geom == 1) return 2 + prim;
-  if (geom == 7) return 3 + prim;
+  if (geom == 2) return 3 + 2 * prim + (u + v <= 1.0f ? 0 : 1);
+  if (geom == 7) return 5 + prim;
   return -1;
 }
 
@@ -97,7 +100,8 @@ TEST_CASE("capture agrees ray for ray with an application's own account of its E
   REQUIRE(std::system((app + " 1 " + (dir / "plain.txt").string()).c_str()) == 0);
   for (const char* threads : {"1", "4"}) {
     const auto out = dir / (std::string("t") + threads);
-    const RunResult r = run_vbsim("capture -o " + out.string() + " -- " + app + " " + threads + " " + (out / "app.txt").string());
+    const RunResult r = run_vbsim("capture --allow-partial -o " + out.string() + " -- " + app + " " + threads + " " +
+                                  (out / "app.txt").string());
     INFO(r.output);
     REQUIRE(r.exit_code == 0);
     CHECK(read_file(out / "app.txt") == read_file(dir / "plain.txt"));  // the capture changes nothing
@@ -106,7 +110,11 @@ TEST_CASE("capture agrees ray for ray with an application's own account of its E
   // Any number of threads: the same trace, scene and answers.
   CHECK(nlohmann::json::parse(read_file(dir / "t4" / "capture.json"))["threads"] == 4);
   CHECK(trace_rays_text(dir / "t1" / "trace.jsonl") == trace_rays_text(dir / "t4" / "trace.jsonl"));
-  CHECK(read_file(dir / "t1" / "scene.ply") == read_file(dir / "t4" / "scene.ply"));
+  // The same scene but for the provenance comment (which names the command line).
+  CHECK(without_provenance(read_file(dir / "t1" / "scene.ply")) == without_provenance(read_file(dir / "t4" / "scene.ply")));
+  CHECK_THAT(read_file(dir / "t1" / "scene.ply"), Catch::Contains("\ncomment vbsim-provenance {"));
+  CHECK_THAT(read_file(dir / "t1" / "trace.jsonl").substr(0, read_file(dir / "t1" / "trace.jsonl").find('\n')),
+             Catch::Contains("\"provenance\":{"));
   CHECK(read_file(dir / "t1" / "embree_hits.jsonl") == read_file(dir / "t4" / "embree_hits.jsonl"));
 
   const AppRecord app_rec = read_app_record(dir / "plain.txt");
@@ -126,12 +134,12 @@ TEST_CASE("capture agrees ray for ray with an application's own account of its E
   }
   const std::vector<nlohmann::json> hits = read_embree_hits(out / "embree_hits.jsonl", trace.size());
   const Scene scene = load_scene((out / "scene.ply").string());
-  REQUIRE(scene.size() == 5);
+  REQUIRE(scene.size() == 7);
   CHECK(scene.triangles[0].v1 == Vec3f{10, -10, 0});  // floor, from a 16-byte-stride shared buffer
   CHECK(scene.triangles[2].v2 == Vec3f{0, 3, 6});     // slanted, from a new buffer
-  CHECK(scene.triangles[4].v2 == Vec3f{8, -10, 10});  // wall, geomID 7, from an RTCBuffer at offset 16
+  CHECK(scene.triangles[6].v2 == Vec3f{8, -10, 10});  // wall, geomID 7, from an RTCBuffer at offset 16
 
-  int outside = 0, linked = 0;
+  int outside = 0, linked = 0, quad_hits = 0;
   std::map<std::pair<int, int>, int64_t> item_ids;  // (item, index) -> trace id
   for (const AppRay& a : app_rec.rays) {
     INFO("item " << a.item << " ray " << a.index << " " << a.kind);
@@ -146,13 +154,14 @@ TEST_CASE("capture agrees ray for ray with an application's own account of its E
     } else if (a.geom < 0) {
       CHECK(h["prim"] == -1);
     } else {
-      CHECK(h["prim"] == expected_triangle(a.geom, a.prim));
+      CHECK(h["prim"] == expected_triangle(a.geom, a.prim, a.u, a.v));
       CHECK(h["geom"] == a.geom);
       CHECK(h["t"].get<float>() == a.t);
-      outside += expected_triangle(a.geom, a.prim) < 0;
-      if (expected_triangle(a.geom, a.prim) >= 0) {
+      outside += expected_triangle(a.geom, a.prim, a.u, a.v) < 0;
+      quad_hits += a.geom == 2;
+      if (expected_triangle(a.geom, a.prim, a.u, a.v) >= 0) {
         // Embree's geometric normal points the way the trace format's (v1 - v0) x (v2 - v0) does.
-        const Triangle& tri = scene.triangles[static_cast<std::size_t>(expected_triangle(a.geom, a.prim))];
+        const Triangle& tri = scene.triangles[static_cast<std::size_t>(expected_triangle(a.geom, a.prim, a.u, a.v))];
         CHECK(dot(geometric_normal(tri), Vec3f{a.ng[0], a.ng[1], a.ng[2]}) > 0.0f);
       }
     }
@@ -164,7 +173,7 @@ TEST_CASE("capture agrees ray for ray with an application's own account of its E
     const AppRay& p = app_rec.rays[&a - app_rec.rays.data() - (a.index - a.parent)];
     REQUIRE(p.index == a.parent);
     CHECK(tr.parent == item_ids.at({a.item, a.parent}));
-    CHECK(tr.parent_prim == expected_triangle(p.geom, p.prim));
+    CHECK(tr.parent_prim == expected_triangle(p.geom, p.prim, p.u, p.v));
     CHECK(tr.parent_t == p.t);
     CHECK(tr.parent_u == p.u);
     CHECK(tr.parent_v == p.v);
@@ -172,14 +181,22 @@ TEST_CASE("capture agrees ray for ray with an application's own account of its E
   }
   CHECK(linked == report["links"]["at_hit_point"].get<int>() + report["links"]["normal_offset"].get<int>());
   CHECK(linked > 200);
-  CHECK(outside == 1);
+  CHECK(outside == 0);  // the quad mesh is captured too
+  CHECK(quad_hits == 1);
   CHECK(report["hits_outside_captured_triangles"] == outside);
+  // Every geometry that takes part is captured: no ray is marked.
+  CHECK(report["incomplete"]["rays"] == 0);
+  int64_t marked = 0;
+  for (const TraceRay& tr : trace) marked += tr.incomplete != 0;
+  CHECK(marked == 0);
   const auto& geoms = report["scene"]["geometries"];
   REQUIRE(geoms.size() == 5);
-  CHECK(geoms[2]["status"] == "not triangles");
+  CHECK(geoms[2]["status"] == "captured");
+  CHECK(geoms[2]["type"] == "quad");
+  CHECK(geoms[2]["triangles"] == 2);
   CHECK(geoms[3]["status"] == "disabled");
   CHECK(geoms[4]["geomID"] == 7);
-  CHECK(geoms[4]["first_triangle"] == 3);
+  CHECK(geoms[4]["first_triangle"] == 5);
 
   // The trace checks clean but for the missing answers, which the oracle fills in.
   RunResult r = run_vbsim("check " + (out / "trace.jsonl").string());

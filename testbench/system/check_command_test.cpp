@@ -33,7 +33,7 @@ TEST_CASE("check names every problem with its line and exits 1 on an error", "[c
   const std::string camera = bunny_camera_ray();
   REQUIRE(camera.find("\"id\":0") != std::string::npos);
   write_file(dir / "t.jsonl", header_line() + camera +
-                                  "{\"id\":5,\"parent\":9,\"o\":[0,0,5],\"d\":[0,0,-1],\"parent_prim\":3,\"expect\":{\"prim\":-1}}\n" +
+                                  "{\"id\":5,\"parent\":9,\"kind\":\"diffuse\",\"o\":[0,0,5],\"d\":[0,0,-1],\"parent_prim\":3,\"expect\":{\"prim\":-1}}\n" +
                                   "{\"id\":4,\"o\":[0,0,5],\"d\":[0,0,-1],\"expect\":{\"prim\":-1}}\n" +
                                   "{\"id\":6,\"o\":[0,0,5],\"d\":[0,0,-1]}\n{\"id\":7,\"o\":[0,0,5],\"d\":[0,0,-1]}\n");
   const RunResult r = run_vbsim("check " + (dir / "t.jsonl").string());

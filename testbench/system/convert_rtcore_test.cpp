@@ -65,6 +65,10 @@ TEST_CASE("convert --to rtcore: a generated trace round-trips o, d and tmax and 
     REQUIRE(r.exit_code == 0);
     const std::vector<TraceRay> original = read_rays(trace.string());
     REQUIRE(std::filesystem::file_size(rays_bin) == 28 * original.size());
+    // The mesh says what wrote it, with the trace's and the scene's checksums (README "Provenance").
+    const std::string mesh_text = read_file(mesh);
+    const std::string comment = mesh_text.substr(mesh_text.find("\ncomment vbsim-provenance {") + 1);
+    CHECK_THAT(comment.substr(0, comment.find('\n')), Catch::Contains("\"command\"") && Catch::Contains(trace.filename().string()));
     // Record 0, decoded by hand: little-endian float32 ox oy oz dx dy dz tmax.
     const std::string bytes = read_file(rays_bin);
     float rec[7];

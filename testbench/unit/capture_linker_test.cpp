@@ -49,11 +49,11 @@ TEST_CASE("captured scene: triangle ids follow geomID order, primitives in order
   write_file(dir.file("s.bin"), snapshot_bytes());
   const CapturedScene s = CapturedScene::read(dir.file("s.bin"));
   REQUIRE(s.triangles().size() == 2);
-  CHECK(s.triangle_id(4, 0) == 0);
-  CHECK(s.triangle_id(4, 1) == 1);
-  CHECK(s.triangle_id(4, 2) == -1);  // out of range
-  CHECK(s.triangle_id(1, 0) == -1);  // the quad mesh is not captured
-  CHECK(s.triangle_id(9, 0) == -1);
+  CHECK(s.triangle_hit(4, 0, 0.25f, 0.25f).triangle == 0);
+  CHECK(s.triangle_hit(4, 1, 0.25f, 0.25f).triangle == 1);
+  CHECK(s.triangle_hit(4, 2, 0.25f, 0.25f).triangle == -1);  // out of range
+  CHECK(s.triangle_hit(1, 0, 0.25f, 0.25f).triangle == -1);  // geometry 1 is not captured (its status)
+  CHECK(s.triangle_hit(9, 0, 0.25f, 0.25f).triangle == -1);
   CHECK(s.triangles()[1].v2 == Vec3f{-10, 10, 0});
   CHECK(s.geometries()[0].status == RawGeometryStatus::NotTriangles);
 

@@ -9,6 +9,7 @@
 
 #include "trace/binary_trace_format.h"
 #include "trace/binary_trace_reader.h"
+#include "trace/incomplete_reasons.h"
 #include "trace/text_trace_reader.h"
 #include "trace/trace_file.h"
 #include "trace_test_support.h"
@@ -57,6 +58,7 @@ std::vector<w::Ray> hard_rays() {
   rays[2].tmax = 1.0f;
   rays[2].parent_prim = 2;
   rays[2].sign = 0;
+  rays[2].incomplete = kIncompleteInstance | kIncompleteFilter;  // "incomplete":["instance","filter"]
   return rays;
 }
 
@@ -85,6 +87,7 @@ void check_same(const TraceRay& got, const w::Ray& want) {
   if (want.expect_prim) CHECK(got.expect_prim == *want.expect_prim);
   CHECK(got.has_expect_t == want.expect_t.has_value());
   if (want.expect_t) CHECK(same_bits(got.expect_t, *want.expect_t));
+  CHECK(got.incomplete == want.incomplete);
 }
 
 std::string records_of(const std::string& vbt) {
@@ -172,4 +175,44 @@ TEST_CASE("C++ writer: errors name the line or record and field, and an unfinish
     CHECK_THAT(message_of([&] { out.write(neg); }), Catch::Contains("bad.vbt: record 1: field 'tmin'"));
   }
   CHECK_THAT(message_of([&] { w::TraceWriter out(dir.file("x.jsonl"), {""}); }), Catch::Contains("field 'scene'"));
+  // What every reader refuses: a duplicate id (in order or not) and a child of kind primary.
+  for (const char* name : {"dup.jsonl", "dup.vbt"}) {
+    w::TraceWriter out(dir.file(name), {"s.ply"});
+    for (int64_t id : {5, 3, 9, 4}) {
+      w::Ray r = ok;
+      r.id = id;
+      out.write(r);
+    }
+    for (int64_t id : {3, 5, 9}) {
+      w::Ray again = ok;
+      again.id = id;
+      CHECK_THAT(message_of([&] { out.write(again); }),
+                 Catch::Contains("field 'id': " + std::to_string(id) + " was given before"));
+    }
+    w::Ray child = ok;
+    child.id = 10;
+    child.parent = 9;
+    child.parent_prim = 0;
+    CHECK_THAT(message_of([&] { out.write(child); }), Catch::Contains("field 'kind': primary") && Catch::Contains("parent 9"));
+    child.kind = w::Kind::Diffuse;
+    out.write(child);
+    child.id = 11;
+    child.incomplete = 1u << 10;
+    CHECK_THAT(message_of([&] { out.write(child); }), Catch::Contains("field 'incomplete'"));
+    CHECK(out.close() == 5);
+  }
+  // vbsim's readers refuse the same two rays.
+  write_file(dir.file("h.jsonl"), "{\"format\":\"vbsim-trace\",\"version\":1,\"scene\":\"s.ply\"}\n"
+                                  "{\"id\":0,\"o\":[0,0,5],\"d\":[0,0,-1]}\n"
+                                  "{\"id\":1,\"parent\":0,\"o\":[0,0,5],\"d\":[0,0,-1],\"parent_prim\":1}\n");
+  auto source = open_trace(dir.file("h.jsonl"));
+  TraceRay r;
+  CHECK(source->next(r));
+  try {
+    source->next(r);
+    FAIL("a child of kind primary was read");
+  } catch (const TraceError& e) {
+    CHECK(e.line == 3);
+    CHECK(e.field == "kind");
+  }
 }

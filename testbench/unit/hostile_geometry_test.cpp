@@ -186,7 +186,7 @@ TEST_CASE("hostile geometry: a trace naming a triangle the scene lacks is an err
   const std::string path = scratch("t.jsonl");
   std::ofstream(path) << "{\"format\":\"vbsim-trace\",\"version\":1,\"scene\":\"s.ply\"}\n"
                       << "{\"id\":0,\"o\":[0,0,1],\"d\":[0,0,-1]}\n"
-                      << "{\"id\":1,\"parent\":0,\"o\":[0,0,0],\"d\":[0,0,1],\"parent_prim\":2}\n"
+                      << "{\"id\":1,\"parent\":0,\"kind\":\"diffuse\",\"o\":[0,0,0],\"d\":[0,0,1],\"parent_prim\":2}\n"
                       << "{\"id\":2,\"o\":[0,0,1],\"d\":[0,0,-1],\"expect\":{\"prim\":-2}}\n";
   TextTraceReader reader(path);
   reader.set_triangle_count(2);

@@ -173,7 +173,7 @@ TEST_CASE("checked source: child before parent throws naming the line, warnings 
                Catch::Contains("1 ray: a sign bit") && !Catch::Contains("oracle"));
   }
   const std::string orphan =
-      "{\"id\":1,\"parent\":2,\"o\":[0.25,0.25,0],\"d\":[0,0,1],\"parent_prim\":0}\n";
+      "{\"id\":1,\"parent\":2,\"kind\":\"diffuse\",\"o\":[0.25,0.25,0],\"d\":[0,0,1],\"parent_prim\":0}\n";
   write_file(dir.file("bad.jsonl"), head + camera + "\n" + orphan + "{\"id\":2,\"o\":[0,0,1],\"d\":[0,0,-1]}\n");
   TextTraceReader reader(dir.file("bad.jsonl"));
   CheckedTraceSource checked(reader, TraceConsistencyChecker::Options{});

@@ -29,6 +29,7 @@
 #include <stdexcept>
 #include <string>
 #include <system_error>
+#include <unordered_set>
 #include <vector>
 
 namespace vbsim::writer {
@@ -51,6 +52,9 @@ struct Ray {
   std::optional<int> sign;          ///< 1 when dot(d, Ng(parent_prim)) < 0, else 0
   std::optional<int32_t> expect_prim;  ///< the exact answer: a triangle, or -1 for a miss
   std::optional<double> expect_t;      ///< its distance (only with a hit)
+  /// Why the renderer's answer depends on what the trace does not hold: bit k
+  /// is reason k of detail::incomplete_name (0: none; docs/trace-format.md).
+  uint32_t incomplete = 0;
 };
 
 struct Header {
@@ -68,6 +72,12 @@ struct TraceWriteError : std::runtime_error {
 
 namespace detail {
 
+/// Name of `incomplete` bit k (10 reasons).
+inline const char* incomplete_name(unsigned k) {
+  static const char* const names[] = {"instance", "quad", "grid",        "subdivision",    "curve",
+                                      "point",    "user", "motion_blur", "other_geometry", "filter"};
+  return k < 10 ? names[k] : nullptr;
+}
 inline const char* kind_name(Kind k) {
   static const char* const names[] = {"primary", "reflect", "refract", "diffuse", "shadow"};
   return static_cast<unsigned>(k) < 5 ? names[static_cast<unsigned>(k)] : nullptr;
@@ -186,6 +196,7 @@ class TraceWriter {
     if (closed_) throw TraceWriteError(path_ + ": write after close");
     check(r);
     emit(binary_ ? record(r) : line(r));
+    remember(r.id);
     last_id_ = r.id;
     ++count_;
   }
@@ -218,6 +229,11 @@ class TraceWriter {
       fail("parent", "ray " + std::to_string(r.id) + " names parent " + std::to_string(r.parent) +
                          ", which cannot come before it; a parent must precede its children");
     if (!detail::kind_name(r.kind)) fail("kind", "unknown kind");
+    if (r.parent >= 0 && r.kind == Kind::Primary)
+      fail("kind", "primary, but the ray has parent " + std::to_string(r.parent) +
+                       ": a camera ray has no parent; give the child's kind (reflect, refract, diffuse or shadow)");
+    if (seen_.count(r.id) || (r.id >= dense_begin_ && r.id < dense_end_))
+      fail("id", std::to_string(r.id) + " was given before: ids are unique within a trace");
     if (!detail::all_finite(r.o)) fail("o", "is not finite");
     if (!detail::all_finite(r.d) || (r.d[0] == 0.0f && r.d[1] == 0.0f && r.d[2] == 0.0f))
       fail("d", "must be finite and non-zero");
@@ -231,6 +247,19 @@ class TraceWriter {
     if (r.expect_prim && *r.expect_prim < -1) fail("expect.prim", "is below -1");
     if (r.expect_t && (!r.expect_prim || *r.expect_prim < 0 || !std::isfinite(*r.expect_t)))
       fail("expect.t", "a hit distance needs a hit (expect_prim >= 0) and must be finite");
+    if (r.incomplete >> 10) fail("incomplete", "unknown reason bits");
+  }
+  /// Records `id` as written: ids that continue the run [dense_begin_, dense_end_) cost nothing.
+  void remember(int64_t id) {
+    if (dense_end_ < 0) {
+      dense_begin_ = id;
+      dense_end_ = id + 1;
+    } else if (id == dense_end_) {
+      ++dense_end_;
+      while (seen_.erase(dense_end_)) ++dense_end_;
+    } else {
+      seen_.insert(id);
+    }
   }
 
   /// The text form, laid out as vbsim's own writer does (fields in format order, defaults left out).
@@ -250,6 +279,12 @@ class TraceWriter {
       s += ",\"expect\":{\"prim\":" + std::to_string(*r.expect_prim);
       if (r.expect_t) s += ",\"t\":" + detail::double_text(*r.expect_t);
       s += "}";
+    }
+    if (r.incomplete) {
+      s += ",\"incomplete\":[";
+      for (unsigned k = 0, n = 0; k < 10; ++k)
+        if (r.incomplete >> k & 1u) s += std::string(n++ ? ",\"" : "\"") + detail::incomplete_name(k) + "\"";
+      s += "]";
     }
     return s + "}\n";
   }
@@ -279,7 +314,7 @@ class TraceWriter {
                            (r.expect_prim ? 0x08u : 0u) | (r.expect_t ? 0x10u : 0u) | (r.sign ? 0x20u : 0u);
     b += static_cast<char>(flags & 0xffu);
     b += static_cast<char>(flags >> 8);
-    detail::put_u32(b, 0);  // reserved
+    detail::put_u32(b, r.incomplete);
     return b;
   }
 
@@ -295,6 +330,9 @@ class TraceWriter {
   int64_t last_id_ = -1;
   bool ascending_ = true;
   bool closed_ = false;
+  int64_t dense_begin_ = -1, dense_end_ = -1;  ///< every id in [begin, end) has been written
+  std::unordered_set<int64_t> seen_;           ///< written ids outside that run
+
 };
 
 }  // namespace vbsim::writer

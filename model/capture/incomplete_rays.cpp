@@ -1,0 +1,87 @@
+#include "capture/incomplete_rays.h"
+
+#include <cmath>
+#include <string>
+
+#include "trace/incomplete_reasons.h"
+
+namespace vbsim::capture {
+
+uint32_t incomplete_reason_of(const CapturedGeometry& g) {
+  switch (g.status) {
+    case RawGeometryStatus::Captured:
+    case RawGeometryStatus::Disabled:
+      return 0;
+    case RawGeometryStatus::MotionBlur:
+      return kIncompleteMotionBlur;
+    case RawGeometryStatus::NestedInstance:
+      return kIncompleteInstance;
+    case RawGeometryStatus::MissingBuffer:
+    case RawGeometryStatus::BadFormat:
+      return g.type == RTC_GEOMETRY_TYPE_INSTANCE ? kIncompleteInstance : kIncompleteOtherGeometry;
+    case RawGeometryStatus::NotTriangles:
+      break;
+  }
+  switch (g.type) {  // RTCGeometryType
+    case RTC_GEOMETRY_TYPE_QUAD: return kIncompleteQuad;
+    case RTC_GEOMETRY_TYPE_GRID: return kIncompleteGrid;
+    case RTC_GEOMETRY_TYPE_SUBDIVISION: return kIncompleteSubdivision;
+    case RTC_GEOMETRY_TYPE_SPHERE_POINT:
+    case RTC_GEOMETRY_TYPE_DISC_POINT:
+    case RTC_GEOMETRY_TYPE_ORIENTED_DISC_POINT: return kIncompletePoint;
+    case RTC_GEOMETRY_TYPE_USER: return kIncompleteUser;
+    case RTC_GEOMETRY_TYPE_INSTANCE: return kIncompleteInstance;
+    default: return std::string(embree_geometry_type_name(g.type)) == "curve" ? kIncompleteCurve : kIncompleteOtherGeometry;
+  }
+}
+
+IncompleteRayJudge::IncompleteRayJudge(const CapturedScene& scene, bool unwatched_filters)
+    : scene_(scene), unwatched_filters_(unwatched_filters) {
+  for (const CapturedGeometry& g : scene.geometries()) {
+    const uint32_t r = incomplete_reason_of(g);
+    uncaptured_kinds_ |= r;
+    if (reason_by_geom_.size() <= g.geom_id) reason_by_geom_.resize(g.geom_id + 1, 0);
+    reason_by_geom_[g.geom_id] = r;
+  }
+  if ((uncaptured_kinds_ != 0 || scene.has_instances()) && !scene.triangles().empty())
+    captured_only_ = std::make_unique<EmbreeReference>(make_scene(scene.triangles()));
+}
+
+IncompleteRayJudge::~IncompleteRayJudge() = default;
+
+uint32_t IncompleteRayJudge::reasons(const RawRay& r) const {
+  uint32_t bits = 0;
+  if (unwatched_filters_ || (r.flags & (kRawFilterChanged | kRawContextFilter))) bits |= kIncompleteFilter;
+  int32_t prim = -1;
+  float t = 0.0f, u, v;
+  auto captured_answer = [&] {  // Embree's closest hit on the trace's triangles
+    return captured_only_ && captured_only_->intersect({r.org[0], r.org[1], r.org[2]},
+                                                       {r.dir[0], r.dir[1], r.dir[2]}, r.tnear, r.tfar, prim, t, u, v);
+  };
+  if (r.op == static_cast<uint16_t>(RawOp::Intersect)) {
+    const TriangleHit h = scene_.triangle_hit(r);
+    if (r.geom != kInvalidId && h.triangle < 0) {  // geometry the trace does not hold
+      if (r.inst != kInvalidId) return bits | kIncompleteInstance;
+      const uint32_t g = r.geom < reason_by_geom_.size() ? reason_by_geom_[r.geom] : 0;
+      return bits | (g != 0 ? g : kIncompleteOtherGeometry);
+    }
+    if (!scene_.has_instances()) return bits;  // a miss, or the closest hit on a triangle the trace holds
+    // With flattened instances the trace's triangles are not the ones Embree
+    // tested (it transformed the ray instead): the flattened answer must agree.
+    ++flattened_checked_;
+    const bool hit = captured_answer();
+    const bool same = r.geom == kInvalidId ? !hit
+                                            : hit && (prim == h.triangle || std::fabs(t - r.hit_t) <= 1e-6f * r.hit_t);
+    if (!same) ++flattened_differs_;
+    return same ? bits : bits | kIncompleteInstance;
+  }
+  const bool occluded = std::isinf(r.hit_t) && r.hit_t < 0;
+  if (!scene_.has_instances() && (!occluded || uncaptured_kinds_ == 0)) return bits;
+  if (scene_.has_instances()) ++flattened_checked_;
+  const bool by_captured = captured_answer();
+  if (by_captured == occluded) return bits;
+  if (scene_.has_instances()) ++flattened_differs_;
+  return bits | uncaptured_kinds_ | (scene_.has_instances() ? kIncompleteInstance : 0u);
+}
+
+}  // namespace vbsim::capture
