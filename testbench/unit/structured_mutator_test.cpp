@@ -104,3 +104,21 @@ TEST_CASE("structured mutator: a binary trace's header length is made to lie", "
   }
   CHECK(lies > 10);
 }
+
+TEST_CASE("structured mutator: counts and inputs of any size are mutated without failing", "[fuzz]") {
+  // A count beyond 2^64 (the mutator once threw std::out_of_range on it) and
+  // 64 KiB of brackets (marking the values once took time quadratic in the input).
+  const std::string ply = "ply\nformat ascii 1.0\nelement vertex 99999999999999999999999\nproperty float x\n"
+                          "end_header\n1\n";
+  const std::string brackets = std::string(32000, '[') + std::string(32000, ']');
+  for (const auto& [format, text] : {std::pair<InputFormat, std::string>{InputFormat::Ply, ply},
+                                     {InputFormat::Json, brackets}, {InputFormat::JsonLines, brackets}}) {
+    for (unsigned seed = 0; seed < 32; ++seed) {
+      std::vector<uint8_t> data(kMaxSize);
+      std::copy(text.begin(), text.end(), data.begin());
+      size_t size = 0;
+      CHECK_NOTHROW(size = vbsim::fuzz::structured_mutate(format, data.data(), text.size(), kMaxSize, seed, keep_bytes));
+      CHECK(size <= kMaxSize);
+    }
+  }
+}
