@@ -268,6 +268,7 @@ MergeResult merge_capture(const std::string& raw_dir, const std::string& out_dir
       e.update({{"first_triangle", g.first_triangle}, {"triangles", g.triangles}, {"vertices", g.vertices}});
     if (g.filters & kRawIntersectFilter) e["intersect_filter"] = true;
     if (g.filters & kRawOccludedFilter) e["occluded_filter"] = true;
+    if (g.mask != 0xffffffffu) e["mask"] = g.mask;  // rtcSetGeometryMask: rays sharing no bit with it are marked
     geometries.push_back(e);
   }
   json other_processes = json::array();

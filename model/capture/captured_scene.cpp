@@ -61,6 +61,7 @@ CapturedScene CapturedScene::read(const std::string& path, const SnapshotFinder&
     cg.type = rg.type;
     cg.status = static_cast<RawGeometryStatus>(rg.status);
     cg.filters = rg.filters;
+    cg.mask = rg.mask;
     if (cg.status == RawGeometryStatus::Captured && rg.type == RTC_GEOMETRY_TYPE_INSTANCE) {
       RawInstance ri;
       c.take(&ri, sizeof ri, "an instance");

@@ -24,6 +24,7 @@ struct CapturedGeometry {
   uint32_t triangles = 0;        ///< trace triangles (two per quad)
   uint32_t vertices = 0;
   uint32_t filters = 0;  ///< RawGeometryFilter bits: filter functions the application set
+  uint32_t mask = 0xffffffffu;  ///< rtcSetGeometryMask: a ray sees the geometry when its mask shares a bit
 };
 
 /// A hit as the trace names it: its triangle (-1: not in the trace) and the

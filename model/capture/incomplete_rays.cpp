@@ -1,5 +1,6 @@
 #include "capture/incomplete_rays.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -38,6 +39,9 @@ uint32_t incomplete_reason_of(const CapturedGeometry& g) {
 IncompleteRayJudge::IncompleteRayJudge(const CapturedScene& scene, bool unwatched_filters)
     : scene_(scene), unwatched_filters_(unwatched_filters) {
   for (const CapturedGeometry& g : scene.geometries()) {
+    if (g.status == RawGeometryStatus::Captured &&
+        std::find(masks_.begin(), masks_.end(), g.mask) == masks_.end())
+      masks_.push_back(g.mask);
     const uint32_t r = incomplete_reason_of(g);
     uncaptured_kinds_ |= r;
     if (reason_by_geom_.size() <= g.geom_id) reason_by_geom_.resize(g.geom_id + 1, 0);
@@ -52,6 +56,10 @@ IncompleteRayJudge::~IncompleteRayJudge() = default;
 uint32_t IncompleteRayJudge::reasons(const RawRay& r) const {
   uint32_t bits = 0;
   if (unwatched_filters_ || (r.flags & (kRawFilterChanged | kRawContextFilter))) bits |= kIncompleteFilter;
+  // A captured geometry whose mask shares no bit with the ray's: Embree did not
+  // test it for this ray, a replay of the trace would.
+  for (const uint32_t m : masks_)
+    if ((r.mask & m) == 0) bits |= kIncompleteMask;
   int32_t prim = -1;
   float t = 0.0f, u, v;
   auto captured_answer = [&] {  // Embree's closest hit on the trace's triangles

@@ -55,6 +55,7 @@ class IncompleteRayJudge {
   bool unwatched_filters_;
   uint32_t uncaptured_kinds_ = 0;
   std::vector<uint32_t> reason_by_geom_;           ///< geomID -> reason bit
+  std::vector<uint32_t> masks_;                    ///< the distinct masks of the captured geometries
   std::unique_ptr<EmbreeReference> captured_only_;  ///< the captured triangles, when anything is outside
   mutable int64_t flattened_checked_ = 0, flattened_differs_ = 0;
 };

@@ -99,6 +99,8 @@ struct RawGeometry {
   uint32_t vertex_count;    ///< 0 unless captured
   uint32_t triangle_count;  ///< primitives (triangles or quads); 0 unless captured
   uint32_t filters;         ///< RawGeometryFilter bits: filter functions set on the geometry
+  uint32_t mask;            ///< rtcSetGeometryMask's mask (0xffffffff unless the application set one)
+  uint32_t reserved;        ///< 0
 };
 
 /// What follows a captured instance's RawGeometry: the scene it instances and its transform.
@@ -110,6 +112,6 @@ struct RawInstance {
 static_assert(sizeof(RawInstance) == 56, "RawInstance is 56 bytes");
 
 enum RawGeometryFilter : uint32_t { kRawIntersectFilter = 1u << 0, kRawOccludedFilter = 1u << 1 };
-static_assert(sizeof(RawGeometry) == 24, "RawGeometry is 24 bytes");
+static_assert(sizeof(RawGeometry) == 32, "RawGeometry is 32 bytes");
 
 }  // namespace vbsim::capture

@@ -77,6 +77,12 @@ void rtcSetGeometryTransformQuaternion(RTCGeometry geometry, unsigned int time_s
   if (capture_enabled()) on_quaternion_transform(geometry);
 }
 
+void rtcSetGeometryMask(RTCGeometry geometry, unsigned int mask) {
+  VBSIM_REAL(rtcSetGeometryMask);
+  real(geometry, mask);
+  if (capture_enabled()) on_mask(geometry, mask);
+}
+
 void rtcSetGeometryBuffer(RTCGeometry geometry, enum RTCBufferType type, unsigned int slot, enum RTCFormat format,
                           RTCBuffer buffer, size_t offset, size_t stride, size_t count) {
   VBSIM_REAL(rtcSetGeometryBuffer);

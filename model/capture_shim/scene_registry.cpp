@@ -30,6 +30,7 @@ struct Geometry {
   unsigned time_steps = 1;
   bool enabled = true;
   uint32_t filters = 0;  // RawGeometryFilter bits
+  uint32_t mask = 0xffffffffu;  // rtcSetGeometryMask (Embree's default: every ray sees the geometry)
   // Instances: the instanced scene and the time-step-0 transform (row-major 3x4).
   RTCScene instanced = nullptr;
   bool has_transform = false, unsupported_transform = false;
@@ -91,6 +92,7 @@ void append_geometry(std::string& out, unsigned geom_id, const Geometry& g, cons
   rg.geom_id = geom_id;
   rg.type = static_cast<uint32_t>(g.type);
   rg.filters = g.filters;
+  rg.mask = g.mask;
   if (g.type == RTC_GEOMETRY_TYPE_INSTANCE) return append_instance(out, rg, g, r);
   const auto vb = g.buffers.find({RTC_BUFFER_TYPE_VERTEX, 0});
   const auto ib = g.buffers.find({RTC_BUFFER_TYPE_INDEX, 0});
@@ -188,6 +190,12 @@ void on_quaternion_transform(RTCGeometry geometry) {
   Registry& r = registry();
   std::lock_guard<std::mutex> lock(r.m);
   r.geometries[geometry].unsupported_transform = true;
+}
+
+void on_mask(RTCGeometry geometry, uint32_t mask) {
+  Registry& r = registry();
+  std::lock_guard<std::mutex> lock(r.m);
+  r.geometries[geometry].mask = mask;
 }
 
 void on_filter(RTCGeometry geometry, uint32_t which, bool set) {

@@ -29,6 +29,8 @@ void on_transform(RTCGeometry geometry, unsigned step, RTCFormat format, const v
 void on_quaternion_transform(RTCGeometry geometry);
 /// A filter function (RawGeometryFilter `which`) set on the geometry, or cleared.
 void on_filter(RTCGeometry geometry, uint32_t which, bool set);
+/// rtcSetGeometryMask: rays whose mask shares no bit with it do not see the geometry.
+void on_mask(RTCGeometry geometry, uint32_t mask);
 /// A buffer bound to (type, slot): data at `ptr` + `offset` (shared and new buffers), else in `buffer` at `offset`.
 void on_buffer(RTCGeometry geometry, RTCBufferType type, unsigned slot, RTCFormat format, const void* ptr,
                RTCBuffer buffer, std::size_t offset, std::size_t stride, std::size_t count);

@@ -5,7 +5,8 @@ namespace vbsim {
 namespace {
 
 const char* const kNames[kIncompleteReasonCount] = {"instance", "quad",  "grid",        "subdivision",    "curve",
-                                                    "point",    "user",  "motion_blur", "other_geometry", "filter"};
+                                                    "point",    "user",  "motion_blur", "other_geometry", "filter",
+                                                    "mask"};
 
 }  // namespace
 

@@ -22,8 +22,9 @@ enum IncompleteReason : uint32_t {
   kIncompleteMotionBlur = 1u << 7,     ///< a mesh with more than one time step
   kIncompleteOtherGeometry = 1u << 8,  ///< any other geometry the trace does not hold
   kIncompleteFilter = 1u << 9,         ///< a filter function rejected or changed a candidate hit, or may have
+  kIncompleteMask = 1u << 10,          ///< a geometry the ray's mask hides from it (rtcSetGeometryMask)
 };
-constexpr int kIncompleteReasonCount = 10;
+constexpr int kIncompleteReasonCount = 11;
 constexpr uint32_t kIncompleteKnownBits = (1u << kIncompleteReasonCount) - 1;
 
 /// Name of reason bit `index` (0 .. kIncompleteReasonCount-1): "instance", "quad", ...

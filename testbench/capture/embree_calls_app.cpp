@@ -110,8 +110,9 @@ void trace(RTCScene scene, int api, std::vector<Ray>& rays) {
     auto f = [&](unsigned k, unsigned i) -> float& { return block[k * w + i]; };
     for (unsigned i = 0; i < n; ++i) {
       const RTCRayHit h = make_rayhit(rays[i]);
-      const float* src = &h.ray.org_x;
-      for (unsigned k = 0; k < 12; ++k) f(k, i) = src[k];
+      // The 12 ray fields as 4-byte words, copied as bytes: mask, id and flags
+      // are integers (read through a float they can lose their bits).
+      for (unsigned k = 0; k < 12; ++k) std::memcpy(&f(k, i), reinterpret_cast<const char*>(&h.ray) + 4 * k, 4);
       reinterpret_cast<unsigned&>(f(12 + 6, i)) = RTC_INVALID_GEOMETRY_ID;
       valid[i] = i == 1 ? 0 : -1;
     }
@@ -148,8 +149,7 @@ void trace(RTCScene scene, int api, std::vector<Ray>& rays) {
       blocks[(i / w) * 20 * w + 3 * w + i % w] = 1, blocks[(i / w) * 20 * w + 8 * w + i % w] = 0;
     for (unsigned i = 0; i < n; ++i) {
       const RTCRayHit h = make_rayhit(rays[i]);
-      const float* src = &h.ray.org_x;
-      for (unsigned k = 0; k < 12; ++k) at(k, i) = src[k];
+      for (unsigned k = 0; k < 12; ++k) std::memcpy(&at(k, i), reinterpret_cast<const char*>(&h.ray) + 4 * k, 4);
       reinterpret_cast<unsigned&>(at(18, i)) = RTC_INVALID_GEOMETRY_ID;
     }
     at(3, 1) = 1, at(8, 1) = 0;  // lane 1 inactive: tnear > tfar

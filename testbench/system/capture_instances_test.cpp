@@ -15,6 +15,7 @@
 
 #include "capture_test_support.h"
 #include "scene/scene.h"
+#include "trace/incomplete_reasons.h"
 
 using namespace vbsim;
 using namespace vbsim::test;
@@ -128,4 +129,47 @@ TEST_CASE("capture flattens instances set in every transform format Embree accep
   INFO(r.output);
   CHECK(r.exit_code == 0);
   CHECK_THAT(r.output, Catch::Contains(fmt::format("{} differ", differing)));
+}
+
+TEST_CASE("capture marks the rays a geometry mask hid geometry from", "[cli][capture]") {
+  // testbench/capture/embree_masks_app.cpp: an upper square with mask 0x2 above
+  // a ground square; rays with mask 0x1 do not see it, rays with 0x3 do.
+  const auto app = std::filesystem::path(VBSIM_CAPTURE_TEST_APP).parent_path() / "vbsim_capture_masks_app";
+  const auto dir = scratch_dir("capture_masks");
+  const auto out = dir / "cap";
+  RunResult r = run_vbsim("capture -o " + out.string() + " -- " + app.string() + " " + (dir / "app.txt").string());
+  INFO(r.output);
+  CHECK(r.exit_code == 1);  // marked rays, without --allow-partial
+  CHECK_THAT(r.output, Catch::Contains("mask"));
+  r = run_vbsim("capture --allow-partial -o " + out.string() + " -- " + app.string() + " " + (dir / "app.txt").string());
+  REQUIRE(r.exit_code == 0);
+  std::vector<std::pair<unsigned, unsigned>> app_rays;  // (ray mask, Embree's geomID)
+  std::istringstream in(read_file(dir / "app.txt"));
+  for (std::string word; in >> word;) {
+    unsigned mask = 0, geom = 0;
+    in >> mask >> geom;
+    app_rays.emplace_back(mask, geom);
+  }
+  const std::vector<TraceRay> trace = read_trace(out / "trace.jsonl");
+  REQUIRE(trace.size() == app_rays.size());
+  REQUIRE(trace.size() == 64);
+  for (std::size_t i = 0; i < trace.size(); ++i) {
+    INFO("ray " << i << " mask " << app_rays[i].first);
+    if (app_rays[i].first == 0x1) {
+      CHECK(app_rays[i].second == 0);  // Embree answered the ground: the upper square was hidden
+      CHECK(trace[i].incomplete == kIncompleteMask);
+    } else {
+      CHECK(app_rays[i].second == 1);  // the upper square
+      CHECK(trace[i].incomplete == 0);
+    }
+  }
+  // The unmarked rays replay to Embree's answer: the upper square's triangles.
+  const auto hits = out / "replay.hits";
+  REQUIRE(run_vbsim("replay -q " + (out / "trace.jsonl").string() + " --hits " + hits.string()).exit_code == 0);
+  r = run_vbsim("compare-reference -q " + hits.string() + " " + (out / "embree_hits.jsonl").string());
+  std::istringstream diffs(r.output);
+  for (std::string line; std::getline(diffs, line);) {
+    const auto j = nlohmann::json::parse(line);
+    CHECK(trace.at(j["id"].get<std::size_t>()).incomplete == kIncompleteMask);
+  }
 }

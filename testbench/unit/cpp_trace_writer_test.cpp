@@ -197,7 +197,7 @@ TEST_CASE("C++ writer: errors name the line or record and field, and an unfinish
     child.kind = w::Kind::Diffuse;
     out.write(child);
     child.id = 11;
-    child.incomplete = 1u << 10;
+    child.incomplete = 1u << 11;
     CHECK_THAT(message_of([&] { out.write(child); }), Catch::Contains("field 'incomplete'"));
     CHECK(out.close() == 5);
   }

@@ -72,11 +72,11 @@ struct TraceWriteError : std::runtime_error {
 
 namespace detail {
 
-/// Name of `incomplete` bit k (10 reasons).
+/// Name of `incomplete` bit k (11 reasons).
 inline const char* incomplete_name(unsigned k) {
-  static const char* const names[] = {"instance", "quad", "grid",        "subdivision",    "curve",
-                                      "point",    "user", "motion_blur", "other_geometry", "filter"};
-  return k < 10 ? names[k] : nullptr;
+  static const char* const names[] = {"instance", "quad", "grid",        "subdivision",    "curve", "point",
+                                      "user",     "motion_blur", "other_geometry", "filter", "mask"};
+  return k < 11 ? names[k] : nullptr;
 }
 inline const char* kind_name(Kind k) {
   static const char* const names[] = {"primary", "reflect", "refract", "diffuse", "shadow"};
@@ -247,7 +247,7 @@ class TraceWriter {
     if (r.expect_prim && *r.expect_prim < -1) fail("expect.prim", "is below -1");
     if (r.expect_t && (!r.expect_prim || *r.expect_prim < 0 || !std::isfinite(*r.expect_t)))
       fail("expect.t", "a hit distance needs a hit (expect_prim >= 0) and must be finite");
-    if (r.incomplete >> 10) fail("incomplete", "unknown reason bits");
+    if (r.incomplete >> 11) fail("incomplete", "unknown reason bits");
   }
   /// Records `id` as written: ids that continue the run [dense_begin_, dense_end_) cost nothing.
   void remember(int64_t id) {
@@ -282,7 +282,7 @@ class TraceWriter {
     }
     if (r.incomplete) {
       s += ",\"incomplete\":[";
-      for (unsigned k = 0, n = 0; k < 10; ++k)
+      for (unsigned k = 0, n = 0; k < 11; ++k)
         if (r.incomplete >> k & 1u) s += std::string(n++ ? ",\"" : "\"") + detail::incomplete_name(k) + "\"";
       s += "]";
     }
