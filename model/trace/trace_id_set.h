@@ -39,8 +39,8 @@ class TraceIdSet {
 
  private:
   struct Range {
-    int64_t end;  ///< one past the last id
-    bool merged;  ///< covers ids that may never have come
+    int64_t last;  ///< the last id (inclusive: a range may end at the largest int64)
+    bool merged;   ///< covers ids that may never have come
   };
   /// Merges the two lowest ranges (called when there are too many).
   void merge_lowest();

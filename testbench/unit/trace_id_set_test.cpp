@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include <random>
+#include <limits>
 #include <set>
 
 #include "trace/trace_id_set.h"
@@ -90,4 +91,20 @@ TEST_CASE("trace id set: scattered ids keep at most max_ranges ranges and are ne
     CHECK(ids.contains(7) == Membership::Unknown);
     CHECK(unknown == 0);  // ascending ids never fall in a merged range
   }
+}
+
+TEST_CASE("trace id set: ids at the ends of int64 join ranges without overflow", "[trace]") {
+  // Found by the structured fuzz mutator: the id 2^63 - 1 overflowed a range's end.
+  constexpr int64_t kMax = std::numeric_limits<int64_t>::max();
+  TraceIdSet ids(2);
+  CHECK(ids.insert(kMax) == Membership::No);
+  CHECK(ids.insert(kMax) == Membership::Yes);
+  CHECK(ids.insert(kMax - 1) == Membership::No);
+  CHECK(ids.ranges() == 1);
+  CHECK(ids.insert(0) == Membership::No);
+  CHECK(ids.contains(kMax - 1) == Membership::Yes);
+  CHECK(ids.contains(kMax - 2) == Membership::No);
+  CHECK(ids.insert(5) == Membership::No);  // three ranges in a set of two: the lowest two merge
+  CHECK(ids.contains(3) == Membership::Unknown);
+  CHECK(ids.contains(kMax) == Membership::Yes);
 }
