@@ -121,6 +121,52 @@ def bench_200k(vbsim):
                            "--json", "{out}"], out_json=True).json()
 
 
+def reintersect(vbsim):
+    """pbrt-v4's protocol at pbrt's size rerun in process (`vbsim reintersect`, about 2 s)."""
+    return Command(vbsim, ["reintersect", "-q", "--triangles", "1000", "--methods",
+                           "offset-errbound,offset-adaptive,validity-bit,validity-bit:vb-policy=vote,sign-only",
+                           "--testers", "pbrt-watertight,three-half-plane", "--json", "{out}"], out_json=True).json()
+
+
+def rerun_pbrt(method, tester, field="count", vbsim=None):
+    """A children count (or 'rate' per million, 'of') of the rerun at pbrt's size."""
+    for row in reintersect(vbsim)["rows"]:
+        if row["method"] == method and row["tester"] == tester:
+            return row["children"][field]
+    raise KeyError(f"{method}/{tester}")
+
+
+_paths_dir = []
+
+
+def paths_score(vbsim):
+    """The `paths` family regenerated as make_results.sh does (10000 rays, seed 1) and
+    scored in cycle mode on the small preset, three-half-plane tester (about a minute)."""
+    import tempfile
+    if not _paths_dir:
+        import atexit
+        import shutil
+        _paths_dir.append(tempfile.mkdtemp(prefix="check_findings_paths_"))
+        atexit.register(shutil.rmtree, _paths_dir[0], True)
+    d = _paths_dir[0]
+    Command(vbsim, ["gen", "paths", "--rays", "10000", "--seed", "1", "-q", "-o", d + "/paths"]).text()
+    return Command(vbsim, ["score", d + "/paths", "--testers", "three-half-plane", "--mode", "cycle",
+                           "--preset", "small", "--cycle-testers", "three-half-plane", "--out", "{out}"],
+                   out_json=True).json()
+
+
+def rerun_paths(method, what, vbsim):
+    """'errors': secondary errors per million; 'cycles': cycles per ray (all rays)."""
+    for row in paths_score(vbsim)["rows"]:
+        if row["method"] != method or row["tester"] != "three-half-plane":
+            continue
+        if what == "errors" and row["kind"] == "secondary":
+            return row["errors"]["per_million"]["rate"]
+        if what == "cycles" and row["kind"] == "all":
+            return row["cycle"]["cycles_per_ray"]
+    raise KeyError(f"{method}/{what}")
+
+
 def bundled_paths(vbsim):
     import json
     import os
@@ -367,6 +413,32 @@ def FIGURES(vbsim):
                         emission("Ray-emission window", "1024", "rays/cycle: large preset"), 1024,
                         emission("Ray-emission window", "4096", "rays/cycle: large preset"), 4096,
                         emission("Ray-emission window", "16384", "rays/cycle: large preset"), 16384)),
+        # The full check also reruns what the quick one reads from docs/results: pbrt's
+        # protocol at its size and the `paths` family, regenerated and scored.
+        Figure("at pbrt's full size ({} triangles, {} children each) {} of {} children, all of them `SpawnRayTo` rays",
+               lambda: (reintersect(v)["params"]["triangles"], 2 * reintersect(v)["params"]["children"],
+                        rerun_pbrt("offset-adaptive", "pbrt-watertight", vbsim=v),
+                        rerun_pbrt("offset-adaptive", "pbrt-watertight", "of", v)), full=True),
+        Figure("the same origins re-hit {}% of the children ({} of {})",
+               lambda: (pct(rerun_pbrt("offset-errbound", "three-half-plane", vbsim=v) /
+                            rerun_pbrt("offset-errbound", "three-half-plane", "of", v)),
+                        rerun_pbrt("offset-errbound", "three-half-plane", vbsim=v),
+                        rerun_pbrt("offset-errbound", "three-half-plane", "of", v)), full=True),
+        Figure("it re-hits {} of {} children ({} per million) even with pbrt's tester, {} ({} per million) with the three-half-plane tester",
+               lambda: (rerun_pbrt(VOTE, "pbrt-watertight", vbsim=v), rerun_pbrt(VOTE, "pbrt-watertight", "of", v),
+                        rerun_pbrt(VOTE, "pbrt-watertight", "rate", v), rerun_pbrt(VOTE, "three-half-plane", vbsim=v),
+                        rerun_pbrt(VOTE, "three-half-plane", "rate", v)), full=True),
+        Figure("it re-hits {} of {} children with pbrt's tester",
+               lambda: (rerun_pbrt("sign-only", "pbrt-watertight", vbsim=v),
+                        rerun_pbrt("sign-only", "pbrt-watertight", "of", v)), full=True),
+        Figure("holds on the `paths` family ({} per million)", lambda: rerun_paths("tmin", "errors", v), full=True),
+        Figure("`offset-errbound` has {} per million with the three-half-plane tester (pbrt's point is not the trace's point) and {} on the Ray Tracing Gems triangles",
+               lambda: (rerun_paths("offset-errbound", "errors", v), acc("offset-errbound", "random-triangles-rtg")),
+               full=True),
+        Figure("`tmin`, `primid`, every offset on its own, every validity-bit variant and `sign-only` cost {} to {} cycles per ray, `none` {} only",
+               lambda: (min(rerun_paths(m, "cycles", v) for m in ["tmin", "primid"] + OFFSETS + VB_VARIANTS + ["sign-only"]),
+                        max(rerun_paths(m, "cycles", v) for m in ["tmin", "primid"] + OFFSETS + VB_VARIANTS + ["sign-only"]),
+                        rerun_paths("none", "cycles", v)), full=True),
         Figure("overstate a path-tracing machine by up to {}% on long traces",
                lambda: max(loss(preset(p, SWEEP, m, "on", "rays/cycle"), preset(p, SWEEP, m, "off", "rays/cycle"))
                            for p in ("small", "large") for m in ("hierarchy", "ideal"))),

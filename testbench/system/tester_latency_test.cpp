@@ -33,7 +33,7 @@ Run replay(const std::string& tester, const std::string& config, const std::file
 
 }  // namespace
 
-TEST_CASE("each tester's derived latency sets its cycles; the hits do not change", "[cli][hw][tester-timing]") {
+TEST_CASE("each tester's derived latency sets its cycles and leaves the hits alone", "[cli][hw][tester-timing]") {
   const auto dir = scratch_dir("tester_latency");
   const std::string base = R"("cores": 1, "slots_per_core": 1, "memory": {"ideal": true})";
   write_file(dir / "fixed.json", R"({"hw": {)" + base + R"(, "triangle": {"latency": 20}}})");

@@ -62,7 +62,7 @@ TEST_CASE("the issue interval follows the operations over the operators", "[hwco
   CHECK(derived_triangle_issue_interval(TesterKind::ThreeHalfPlane, 1) == 63);
 }
 
-TEST_CASE("derive, operators and operator latencies in the configuration; a latency overrides", "[hwconfig][tester-timing]") {
+TEST_CASE("derive, operators and operator latencies in the configuration, and a latency that overrides them", "[hwconfig][tester-timing]") {
   HwConfig c;
   apply_hw_config(nlohmann::json::parse(R"({"triangle": {"derive": true, "operators": 63,
                                             "operator_latency": {"fdiv": 10}}})"),
