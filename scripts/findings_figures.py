@@ -167,6 +167,19 @@ def rerun_paths(method, what, vbsim):
     raise KeyError(f"{method}/{what}")
 
 
+def far_k():
+    """k of the far-instance family's trace (far-instance-kK.jsonl, architecture.md's inputs)."""
+    return regex("architecture.md", r"far-instance-k([0-9]+)\.jsonl")
+
+
+def int_scale(vbsim):
+    """offset-adaptive's int_scale (ulps per unit normal component) as vbsim score runs it."""
+    for row in bunny_score(vbsim).json()["rows"]:
+        if row["method"] == "offset-adaptive":
+            return row["config"]["adaptive"]["int_scale"]
+    raise KeyError("offset-adaptive")
+
+
 def bundled_paths(vbsim):
     import json
     import os
@@ -221,7 +234,7 @@ def FIGURES(vbsim):
                         max(float(r["x"]) for r in sweep_rows("distance", "offset-adaptive")))),
         NotAFigure("its Figure 6-7 triangles", "a figure's number in Ray Tracing Gems"),
         Figure("on a bunny translated 2^{} away its {} ulps are {} units",
-               lambda: (20, 256, 256 * 2.0 ** (20 - 23))),
+               lambda: (far_k(), int_scale(v), int_scale(v) * 2.0 ** (far_k() - 23))),
         Figure("children skip the mesh (far-instance {}, almost all misses)",
                lambda: acc("offset-adaptive", "far-instance")),
         NotAFigure("coordinate range (10^±8)", "pbrt-v4's protocol definition"),
@@ -359,7 +372,8 @@ def FIGURES(vbsim):
         NotAFigure("(`shader.latency_cycles`, 200 by default;", "a configuration default (docs/hw-model.md)"),
         NotAFigure("(4 cores x 32 slots)", "the small preset's definition"),
         NotAFigure("(10 cores x 128 slots, a ray source of one ray per cycle)", "the large preset's definition"),
-        Figure("on the {}-ray sweep trace, whose {} paths", lambda: (preset("small", SWEEP, "hierarchy", "on", "rays"), 5000)),
+        Figure("on the {}-ray sweep trace, whose {} paths", lambda: (preset("small", SWEEP, "hierarchy", "on", "rays"),
+                        regex("architecture.md", r"vbsim gen paths --rays ([0-9]+)"))),
         Figure("{} against {} rays per cycle with the memory hierarchy (-{}%), {} against {} with ideal memory; mean latency {} against {} cycles",
                lambda: (preset("small", SWEEP, "hierarchy", "on", "rays/cycle"), preset("small", SWEEP, "hierarchy", "off", "rays/cycle"),
                         loss(preset("small", SWEEP, "hierarchy", "on", "rays/cycle"), preset("small", SWEEP, "hierarchy", "off", "rays/cycle")),
