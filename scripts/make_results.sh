@@ -18,7 +18,9 @@
 #     pathtracer trace (scripts/energy_page.py, docs/energy.md);
 #  5. stability.md, sweep-*.png, sweeps.csv: stability sweeps (scripts/sweep.py);
 #  6. montage.png: every method rendered on the failure scenes
-#     (scripts/make_montage.py).
+#     (scripts/make_montage.py);
+#  7. checks every figure docs/findings.md quotes against them
+#     (scripts/check_findings.py, full mode): exits 1 when one no longer matches.
 #
 #   scripts/make_results.sh [--rays N] [--seed S] [--backend slurm [--partition P]
 #                           [--account A] [--time T] [--max-parallel N]]
@@ -116,3 +118,7 @@ mkdir -p "$out/captured/pathtracer"
 /usr/bin/python3 scripts/sweep.py --vbsim "$vbsim" --work "$out/sweeps" --out docs/results ${backend[@]+"${backend[@]}"}
 /usr/bin/python3 scripts/make_montage.py
 echo "make_results.sh: every result in docs/results/ regenerated" >&2
+# Every figure docs/findings.md quotes against the regenerated results and its own
+# reruns (scripts/check_findings.py): a figure that moved fails here, and the page
+# must be updated with it.
+/usr/bin/python3 scripts/check_findings.py --vbsim "$vbsim"

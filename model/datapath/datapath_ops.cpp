@@ -92,6 +92,37 @@ OpCounts triangle_test_ops(TesterKind kind) {
   }
 }
 
+OpCounts triangle_test_critical_path(TesterKind kind) {
+  // Independent operations run side by side (a pipelined datapath has one
+  // operator per counted operation); a compare of two bounds, or of three
+  // values, is one stage; the double-precision redo is an exception path, off
+  // the chain.
+  switch (kind) {
+    case TesterKind::MollerTrumbore:
+      // e2 = v2 - v0 (fadd); p = d x e2 (fmul, fadd); det = dot(e1, p) (fmul,
+      // fadd, fadd); 1 / det (fdiv); v = dot(d, q) * inv_det (fmul; q = s x e1
+      // and its dot are ready long before); u + v (fadd); u + v <= 1 (fcmp).
+      // (t = dot(e2, q) * inv_det and its compare run beside v's.)
+      return fadd(1) + fmul(1) + fadd(1) + fmul(1) + fadd(2) + fdiv(1) + fmul(1) + fadd(1) + fcmp(1);
+    case TesterKind::PbrtWatertight:
+      // q = v - o (fadd); shear p.x += sx * p.z (fmul, fadd); e0..e2 =
+      // difference_of_products (fmul, then fma, then the error's fadd); det =
+      // e0 + e1 + e2 (fadd, fadd); inv_det = 1 / det (fdiv); delta_t's last
+      // factor |inv_det| (fsel) and product (fmul; the rest of the bound is
+      // ready before inv_det, and t = t_scaled * inv_det runs beside it);
+      // t > delta_t, with tmin < t < tmax beside it (fcmp).
+      return fadd(1) + fmul(1) + fadd(1) + fmul(1) + fma(1) + fadd(1) + fadd(2) + fdiv(1) + fsel(1) + fmul(1) +
+             fcmp(1);
+    default:
+      // three_half_plane_tester.cpp: a = v - o (fadd); shear a[kx] - sx *
+      // a[kz] (fmul, fadd); edge function cx * by - cy * bx (fmul, fadd);
+      // t_scaled = e_u az + e_v bz + e_w cz (fmul, fadd, fadd; det's two fadds
+      // and the scaled range test run beside it); t = t_scaled / det (fdiv);
+      // tmin < t < tmax (fcmp).
+      return fadd(1) + fmul(1) + fadd(1) + fmul(1) + fadd(1) + fmul(1) + fadd(2) + fdiv(1) + fcmp(1);
+  }
+}
+
 OpCounts triangle_setup_ops(TesterKind kind) {
   // max_dimension(d): 3 abs, 2 compares.
   const OpCounts max_dimension = fsel(3) + fcmp(2);

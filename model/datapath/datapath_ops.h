@@ -15,6 +15,11 @@ OpCounts box_test_ops();
 OpCounts box_setup_ops();
 /// One ray-triangle test of `kind` (its intersect(), every operation of a hit).
 OpCounts triangle_test_ops(TesterKind kind);
+/// The operations on the longest dependency chain of one ray-triangle test of
+/// `kind`, one entry per operator the chain passes through (datapath_ops.cpp
+/// derives each beside the code; docs/hw-model.md tabulates them). A pipelined
+/// tester's latency is the sum of these operators' latencies.
+OpCounts triangle_test_critical_path(TesterKind kind);
 /// The tester's per-ray set-up (its constructor).
 OpCounts triangle_setup_ops(TesterKind kind);
 /// A push onto the traversal stack (BvhStepper::node_step when both children are met).

@@ -65,7 +65,7 @@ void check_builtin_lookahead(const MemoryConfig& m) {
 
 Accelerator::Accelerator(sc_core::sc_module_name name, const HwConfig& config, const Scene& scene, const Bvh& bvh,
                          const ReplayOptions& options, const AcceleratorUnits& units)
-    : AcceleratorChecks(config, bvh), sc_core::sc_module(name), config_(config), bvh_(bvh), replayer_(scene, bvh, options),
+    : AcceleratorChecks(config, bvh), sc_core::sc_module(name), config_(for_tester(config, options.tester)), bvh_(bvh), replayer_(scene, bvh, options),
       clock_(config.clock_mhz), at_(!config.memory.ideal && config.memory.tlm == TlmStyle::ApproximatelyTimed),
       avoidance_in_use_(options.method.validity_bit && options.method.avoidance.policy != AvoidancePolicy::SignOnly),
       cores_("core") {

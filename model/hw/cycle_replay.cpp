@@ -55,8 +55,8 @@ CycleRunResult run_cycle_replay(const RayFeed& feed, const Scene& scene, const B
   r.table = acc->hw_table();
   // Energy and area, from the counters the run kept (nothing per cycle).
   const TechFile tech = options.tech ? *options.tech : load_tech_file(default_tech_path());
-  r.hw["energy"] = hw_energy_json(tech, cfg, opt, r.stats, r.counters, r.hw["memory"]["port"]);
-  r.hw["area"] = hw_area_json(tech, hw_area(tech, cfg, opt));
+  r.hw["energy"] = hw_energy_json(tech, acc->config(), opt, r.stats, r.counters, r.hw["memory"]["port"]);
+  r.hw["area"] = hw_area_json(tech, hw_area(tech, acc->config(), opt));
   r.table += hw_energy_lines(r.hw["energy"], r.hw["area"]);
   if (vcd) vcd->write(options.vcd.path);
   if (timeline) timeline->write(options.timeline.path);

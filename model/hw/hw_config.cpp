@@ -11,6 +11,17 @@ using config_fields::Fields;
 
 constexpr uint32_t kMaxCount = 1u << 20;
 
+nlohmann::json triangle_json(const HwConfig& c) {
+  nlohmann::json j{{"count", c.triangle.count}, {"latency", c.triangle.latency},
+                   {"issue_interval", c.triangle.issue_interval}};
+  if (c.triangle_timing.derive) {
+    j["derive"] = true;
+    j["operators"] = c.triangle_timing.operators;
+    j["operator_latency"] = operator_latencies_json(c.triangle_timing.op);
+  }
+  return j;
+}
+
 std::string preset_path(const std::string& name) { return std::string(VBSIM_PRESETS_DIR) + "/" + name + ".json"; }
 
 void read_unit(Fields& parent, const std::string& key, UnitConfig& u) {
@@ -147,7 +158,21 @@ void apply_hw_config(const nlohmann::json& j, const std::string& file, HwConfig&
     fs.integer("latency_cycles", cfg.shader.latency_cycles, 0, 1000000);
   }
   read_unit(f, "box", cfg.box);
-  read_unit(f, "triangle", cfg.triangle);
+  if (const auto* v = f.get("triangle")) {
+    // A latency or issue interval given without `derive` fixes the unit's timing
+    // (an override of a preset's derivation); with `derive: true` they are
+    // recomputed for each run's tester.
+    Fields ft(*v, file, "hw.triangle");
+    ft.integer("count", cfg.triangle.count, 1, 64);
+    const bool fixed = ft.get("latency") || ft.get("issue_interval");
+    ft.integer("latency", cfg.triangle.latency, 1, 100000);
+    ft.integer("issue_interval", cfg.triangle.issue_interval, 1, 100000);
+    if (fixed) cfg.triangle_timing.derive = false;
+    ft.boolean("derive", cfg.triangle_timing.derive);
+    ft.integer("operators", cfg.triangle_timing.operators, 0, 100000);
+    if (const auto* o = ft.get("operator_latency"))
+      read_operator_latencies(*o, file, "hw.triangle.operator_latency", cfg.triangle_timing.op);
+  }
   read_unit(f, "avoidance", cfg.avoidance);
   read_memory(f, cfg.memory);
   if (const auto* s = f.get("sim")) {
@@ -156,6 +181,14 @@ void apply_hw_config(const nlohmann::json& j, const std::string& file, HwConfig&
     fs.integer("latency_bucket_cycles", cfg.latency_bucket_cycles, 1, 1u << 20);
     fs.integer("latency_buckets", cfg.latency_buckets, 1, 4096);
   }
+}
+
+HwConfig for_tester(HwConfig cfg, TesterKind kind) {
+  if (cfg.triangle_timing.derive) {
+    cfg.triangle.latency = derived_triangle_latency(kind, cfg.triangle_timing.op);
+    cfg.triangle.issue_interval = derived_triangle_issue_interval(kind, cfg.triangle_timing.operators);
+  }
+  return cfg;
 }
 
 HwConfig resolve_hw_config(const std::string& path, const std::string& preset) {
@@ -211,7 +244,7 @@ nlohmann::json hw_config_json(const HwConfig& c) {
             {"bundle_max", c.source.bundle_max}}},
           {"shader", {{"latency_cycles", c.shader.latency_cycles}}},
           {"box", unit(c.box)},
-          {"triangle", unit(c.triangle)},
+          {"triangle", triangle_json(c)},
           {"avoidance", unit(c.avoidance)},
           {"memory",
            {{"ideal", m.ideal},

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "hw/memory_config.h"
+#include "hw/tester_timing.h"
 
 namespace vbsim::hw {
 
@@ -72,6 +73,9 @@ struct HwConfig {
   ShaderConfig shader;
   UnitConfig box{1, 8, 1};
   UnitConfig triangle{1, 20, 1};
+  /// With triangle_timing.derive, triangle.latency and issue_interval follow the
+  /// tester of the run (for_tester); the values above hold until then.
+  TriangleTiming triangle_timing;
   UnitConfig avoidance{1, 6, 1};
   MemoryConfig memory;
   uint32_t quantum_cycles = 256;        ///< sim: most cycles the engine runs ahead of SystemC time
@@ -93,6 +97,11 @@ void apply_hw_config(const nlohmann::json& j, const std::string& file, HwConfig&
 /// The hardware configuration for a run: preset `preset` (empty: the `hw.preset`
 /// of the file, else small), then the `hw` object of the config file `path` (may be empty).
 HwConfig resolve_hw_config(const std::string& path, const std::string& preset);
+
+/// `cfg` for a run with tester `kind`: with triangle_timing.derive, the triangle
+/// unit's latency and issue interval derived from the tester's arithmetic
+/// (tester_timing.h); otherwise `cfg` as it is.
+HwConfig for_tester(HwConfig cfg, TesterKind kind);
 
 /// The configuration as JSON, every field (the form presets and `config.hw` use).
 nlohmann::json hw_config_json(const HwConfig& cfg);

@@ -31,7 +31,8 @@ double HwArea::chip() const {
          emission_unit * emission_lanes + (ray_records + stack + l1_cache) * cores + l2_cache;
 }
 
-HwArea hw_area(const TechFile& t, const HwConfig& cfg, const ReplayOptions& opt) {
+HwArea hw_area(const TechFile& t, const HwConfig& given, const ReplayOptions& opt) {
+  const HwConfig cfg = for_tester(given, opt.tester);  // the tester's own issue interval
   const MethodOps mo = method_ops(opt.method);
   HwArea a;
   a.cores = cfg.cores;

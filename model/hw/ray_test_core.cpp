@@ -33,7 +33,7 @@ RayTestCore::RayTestCore(sc_core::sc_module_name name, uint32_t index, const HwC
                            [&](const char* n) { return std::make_unique<BoxUnit>(n, config.box); });
   builtin_triangle_ = bind_unit(triangle, units.triangle_tester, "triangle_tester", index, config, "PipelineIf",
                                 triangle_tester_, replacements_, [&](const char* n) {
-                                  return std::make_unique<TriangleTester>(n, config.triangle, tester);
+                                  return std::make_unique<TriangleTester>(n, for_tester(config, tester).triangle, tester);
                                 });
   builtin_avoidance_ = bind_unit(avoidance, units.avoidance_unit, "avoidance_unit", index, config, "PipelineIf",
                                  avoidance_unit_, replacements_, [&](const char* n) {

@@ -52,7 +52,7 @@ void run_bench(const BenchArgs& a) {
     const CycleBenchResult c = run_cycle_bench(scene, opt, cfg, p);
     r = c.speed;
     j = r.to_json();
-    j["hw"] = {{"config", hw::hw_config_json(cfg)},
+    j["hw"] = {{"config", hw::hw_config_json(hw::for_tester(cfg, opt.tester))},
                {"cycles", c.cycles},
                {"rays_per_cycle", c.rays_per_cycle},
                {"energy", c.energy},

@@ -46,7 +46,7 @@ void run_hw(const HwArgs& a) {
   if (!a.json.empty()) {
     const nlohmann::json j = {{"hierarchy", hw::hierarchy_json(*acc)},
                               {"statistics", hw::statistics_json(*acc)},
-                              {"config", hw::hw_config_json(cfg)},
+                              {"config", hw::hw_config_json(hw::for_tester(cfg, opt.tester))},
                               {"area", hw::hw_area_json(tech, area)}};
     write_output_file(a.json, j.dump(2) + "\n", "hw JSON");
   }

@@ -89,7 +89,7 @@ ReplayStats run_cycle_mode(const ReplayArgs& a, const ReplayOptions& opt, const 
   if (!a.missing_parents.empty())
     cfg.source.missing_parents =
         a.missing_parents == "independent" ? hw::MissingParents::Independent : hw::MissingParents::Error;
-  config["hw"] = hw::hw_config_json(cfg);
+  config["hw"] = hw::hw_config_json(hw::for_tester(cfg, opt.tester));
   source.set_triangle_count(sb.scene.size());
   hw::CycleRunOptions run;
   run.stop = &g_stop;
