@@ -158,51 +158,49 @@ void on_detach(RTCScene scene, unsigned geom_id) {
   r.scenes[scene].attached.erase(geom_id);
 }
 
-void on_enable(RTCGeometry geometry, bool enabled) {
+namespace {
+
+/// Applies `change` to the registry's record of `geometry`, under the registry's lock.
+template <class Change>
+void change_geometry(RTCGeometry geometry, Change change) {
   Registry& r = registry();
   std::lock_guard<std::mutex> lock(r.m);
-  r.geometries[geometry].enabled = enabled;
+  change(r.geometries[geometry]);
+}
+
+}  // namespace
+
+void on_enable(RTCGeometry geometry, bool enabled) {
+  change_geometry(geometry, [&](Geometry& g) { g.enabled = enabled; });
 }
 
 void on_time_steps(RTCGeometry geometry, unsigned count) {
-  Registry& r = registry();
-  std::lock_guard<std::mutex> lock(r.m);
-  r.geometries[geometry].time_steps = count;
+  change_geometry(geometry, [&](Geometry& g) { g.time_steps = count; });
 }
 
 void on_instanced_scene(RTCGeometry geometry, RTCScene scene) {
-  Registry& r = registry();
-  std::lock_guard<std::mutex> lock(r.m);
-  r.geometries[geometry].instanced = scene;
+  change_geometry(geometry, [&](Geometry& g) { g.instanced = scene; });
 }
 
 void on_transform(RTCGeometry geometry, unsigned step, RTCFormat format, const void* xfm) {
-  Registry& r = registry();
-  std::lock_guard<std::mutex> lock(r.m);
-  Geometry& g = r.geometries[geometry];
-  if (step != 0) return;  // more time steps make it motion-blurred (time_steps), not captured
-  g.has_transform = xfm && capture::instance_transform_row_major(static_cast<uint32_t>(format),
-                                                                  static_cast<const float*>(xfm), g.xfm);
-  g.unsupported_transform = !g.has_transform;
+  change_geometry(geometry, [&](Geometry& g) {
+    if (step != 0) return;  // more time steps make it motion-blurred (time_steps), not captured
+    g.has_transform = xfm && capture::instance_transform_row_major(static_cast<uint32_t>(format),
+                                                                    static_cast<const float*>(xfm), g.xfm);
+    g.unsupported_transform = !g.has_transform;
+  });
 }
 
 void on_quaternion_transform(RTCGeometry geometry) {
-  Registry& r = registry();
-  std::lock_guard<std::mutex> lock(r.m);
-  r.geometries[geometry].unsupported_transform = true;
+  change_geometry(geometry, [](Geometry& g) { g.unsupported_transform = true; });
 }
 
 void on_mask(RTCGeometry geometry, uint32_t mask) {
-  Registry& r = registry();
-  std::lock_guard<std::mutex> lock(r.m);
-  r.geometries[geometry].mask = mask;
+  change_geometry(geometry, [&](Geometry& g) { g.mask = mask; });
 }
 
 void on_filter(RTCGeometry geometry, uint32_t which, bool set) {
-  Registry& r = registry();
-  std::lock_guard<std::mutex> lock(r.m);
-  uint32_t& f = r.geometries[geometry].filters;
-  f = set ? (f | which) : (f & ~which);
+  change_geometry(geometry, [&](Geometry& g) { g.filters = set ? (g.filters | which) : (g.filters & ~which); });
 }
 
 void on_buffer(RTCGeometry geometry, RTCBufferType type, unsigned slot, RTCFormat format, const void* ptr,
