@@ -61,6 +61,14 @@ TEST_CASE("ids out of order cost no memory that grows with the trace", "[memory]
     const auto [out_of_order, code_b] = peak_kb(std::string(VBSIM_BINARY) + " " + command + " " + outlier + quiet);
     CHECK(code_a == 0);
     CHECK(code_b == 0);
+#if defined(__SANITIZE_ADDRESS__)
+    // AddressSanitizer holds freed memory in its quarantine instead of reusing
+    // it, so a hash table's churn (the order check's index of the window, built
+    // once ids stop ascending) shows as growth: the bound is the release build's.
+    WARN("peak memory not compared under AddressSanitizer: " << in_order << " KB in order, " << out_of_order
+                                                               << " KB out of order");
+#else
     CHECK(out_of_order < in_order + 8 * 1024);
+#endif
   }
 }
