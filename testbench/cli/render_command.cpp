@@ -83,9 +83,11 @@ int run_render(const RenderArgs& a) {
 
   SceneAndBvh sb;
   std::vector<std::string> inputs = {a.scene, a.method.config};
+  std::string trace_scene;  // the scene a trace names, when the input is a trace
   if (is_trace_path(a.scene)) {  // a trace: its scene, transform and light
     const TraceHeader header = open_trace(a.scene)->header();
-    inputs.push_back(header.scene_path);
+    trace_scene = header.scene_path;
+    inputs.push_back(trace_scene);
     sb = load_trace_scene(header);
     if (header.light) rs.light = {RenderLight::Kind::Point, *header.light};
   } else {
@@ -93,7 +95,7 @@ int run_render(const RenderArgs& a) {
     sb.bvh = build_bvh(sb.scene);
   }
   check_output_paths({{"scene", a.scene}, {"option '--config'", a.method.config},
-                      {"scene of the trace", inputs.size() > 2 ? inputs[2] : std::string()}},
+                      {"scene of the trace", trace_scene}},
                      {{"option '--out'", a.out}, {"option '--errors'", a.errors}, {"option '--stats'", a.stats}});
   if (!a.light.empty()) {
     std::string error;
