@@ -9,7 +9,10 @@ numbers that are inputs or names (a seed, a preset's size, a listing's number), 
 the reason. scripts/check_findings.py fails on any number of findings.md that no entry
 covers, so a figure added to the page must be added here.
 """
-from findings_sources import Command, cell, regex, sweep_rows, table_cell
+import json
+import os
+
+from findings_sources import ROOT, Command, cell, regex, sweep_rows, table_cell
 
 
 class Figure:
@@ -27,6 +30,8 @@ VOTE = "validity-bit:vb-policy=vote"
 VB_VARIANTS = [VB, VOTE, "validity-bit:vb-guard-bits=2", "validity-bit:vb-eps-mode=fixed:vb-eps=1e-4",
                "validity-bit:vb-eps-mode=fixed:vb-eps=1e-4:vb-policy=vote"]
 OFFSETS = ["offset-normal", "offset-direction", "offset-adaptive", "offset-errbound"]
+# Methods whose emission-time arithmetic is short enough not to bind the ray source.
+CHEAP_AT_EMISSION = ["tmin", "primid"] + OFFSETS[:2] + VB_VARIANTS + ["sign-only"]
 
 
 def acc(method, family):  # secondary errors per million, three-half-plane tester
@@ -39,6 +44,14 @@ def accp(method, family):  # the same with pbrt-v4's tester
 
 def camp(method, family):  # camera rays pbrt's tester missed, per million
     return cell("accuracy.md", "Camera rays the pbrt-watertight tester missed", method, family)
+
+
+def preset_field(preset, *path):  # a field of a shipped preset file
+    with open(os.path.join(ROOT, "model", "hw", "presets", preset + ".json")) as f:
+        value = json.load(f)
+    for key in path:
+        value = value[key]
+    return value
 
 
 def cycles(method, family="paths"):  # accuracy.md's cycle table, small preset
@@ -339,20 +352,29 @@ def FIGURES(vbsim):
         Figure("which on the `paths` family is {} operations per ray",
                lambda: cell("accuracy.md", "paths", (VB, "three-half-plane"), "ops/ray")),
         NotAFigure("the shipped 45 nm figures", "the technology file's node"),
-        Figure("the validity bit's own arithmetic costs {} pJ per ray (its four avoidance units {} mm² on the `small` preset), `offset-errbound`'s {} pJ (a {} mm² emission lane), against about {} nJ per ray of traversal operations",
+        Figure("the validity bit's own arithmetic costs {} pJ per ray (its four avoidance units {} mm² on the `small` preset), `offset-errbound`'s {} pJ (a {} mm² emission lane, its operators shared by the unit {} wide), against about {} nJ per ray of traversal operations",
                lambda: (bunny_energy(VB, "method_per_ray_pj", v),
                         area(VB, "avoidance_unit", v),
                         bunny_energy("offset-errbound", "method_per_ray_pj", v),
-                        area("offset-errbound", "emission_lane", v),
+                        area("offset-errbound", "emission_lane", v), preset_field("small", "source", "emission_width"),
                         (bunny_energy(VB, "per_ray_pj", v) - bunny_energy(VB, "method_per_ray_pj", v)) / 1000)),
         Figure("the caches and DRAM dominate ({} nJ per ray on {} random bunny rays, {} Mrays/J)",
                lambda: (bench_200k(v)["hw"]["energy"]["per_ray_pj"] / 1000, bench_200k(v)["rays"],
                         bench_200k(v)["hw"]["energy"]["mrays_per_j"]), full=True),
         # Cycles.
-        Figure("`tmin`, `primid`, every offset on its own, every validity-bit variant and `sign-only` cost {} to {} cycles per ray, `none` {} only",
-               lambda: (min(cycles(m) for m in ["tmin", "primid"] + OFFSETS + VB_VARIANTS + ["sign-only"]),
-                        max(cycles(m) for m in ["tmin", "primid"] + OFFSETS + VB_VARIANTS + ["sign-only"]),
+        Figure("`offset-direction`, every validity-bit variant and `sign-only` cost {} to {} cycles per ray, `none` {} only",
+               lambda: (min(cycles(m) for m in CHEAP_AT_EMISSION),
+                        max(cycles(m) for m in CHEAP_AT_EMISSION),
                         cycles("none"))),
+        Figure("so `offset-adaptive` costs {} and `offset-errbound` {} cycles per ray",
+               lambda: (cycles("offset-adaptive"), cycles("offset-errbound"))),
+        NotAFigure("(its 128 operations hold the lane 20 cycles a child: ray-source bound)",
+                   "docs/methods.md's operation count and the small preset's emission unit, pinned by "
+                   "testbench/system/emission_unit_test.cpp"),
+        NotAFigure("an emission unit 8 wide and 4 deep", "the small preset's definition"),
+        NotAFigure("(a unit 16 wide)", "the large preset's definition"),
+        NotAFigure("at the 33 cycles its arithmetic gives", "docs/hw-model.md's derivation, pinned by "
+                   "testbench/unit/tester_timing_test.cpp"),
         Figure("which act on shadow rays only, {} to {}",
                lambda: (min(cycles(m) for m in ["shading-position", "shading-position-always", "reverse-shadow"]),
                         max(cycles(m) for m in ["shading-position", "shading-position-always", "reverse-shadow"]))),
@@ -449,9 +471,9 @@ def FIGURES(vbsim):
         Figure("`offset-errbound` has {} per million with the three-half-plane tester (pbrt's point is not the trace's point) and {} on the Ray Tracing Gems triangles",
                lambda: (rerun_paths("offset-errbound", "errors", v), acc("offset-errbound", "random-triangles-rtg")),
                full=True),
-        Figure("`tmin`, `primid`, every offset on its own, every validity-bit variant and `sign-only` cost {} to {} cycles per ray, `none` {} only",
-               lambda: (min(rerun_paths(m, "cycles", v) for m in ["tmin", "primid"] + OFFSETS + VB_VARIANTS + ["sign-only"]),
-                        max(rerun_paths(m, "cycles", v) for m in ["tmin", "primid"] + OFFSETS + VB_VARIANTS + ["sign-only"]),
+        Figure("`offset-direction`, every validity-bit variant and `sign-only` cost {} to {} cycles per ray, `none` {} only",
+               lambda: (min(rerun_paths(m, "cycles", v) for m in CHEAP_AT_EMISSION),
+                        max(rerun_paths(m, "cycles", v) for m in CHEAP_AT_EMISSION),
                         rerun_paths("none", "cycles", v)), full=True),
         Figure("overstate a path-tracing machine by up to {}% on long traces",
                lambda: max(loss(preset(p, SWEEP, m, "on", "rays/cycle"), preset(p, SWEEP, m, "off", "rays/cycle"))

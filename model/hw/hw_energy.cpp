@@ -44,7 +44,13 @@ HwArea hw_area(const TechFile& t, const HwConfig& given, const ReplayOptions& op
   a.triangle_tester = t.area_mm2(shared_over(triangle_test_ops(opt.tester) + mo.candidate, cfg.triangle.issue_interval)) +
                       t.area_mm2(triangle_setup_ops(opt.tester));
   a.avoidance_unit = a.avoidance_units ? t.area_mm2(shared_over(mo.suspect, cfg.avoidance.issue_interval)) : 0.0;
-  a.emission_unit = t.area_mm2(mo.emission + mo.result);
+  // An emission unit of `emission_width` starts that many operations a cycle, so a
+  // ray's n operations share each operator kind over ceil(n / width) cycles; with
+  // no unit, one operator per operation (a fully pipelined lane).
+  const uint32_t width = cfg.source.emission_width;
+  const int n = mo.emission.total();
+  const uint32_t interval = width > 0 && n > 0 ? (static_cast<uint32_t>(n) + width - 1) / width : 1;
+  a.emission_unit = t.area_mm2(shared_over(mo.emission, interval)) + t.area_mm2(mo.result);
   const double slots = cfg.slots_per_core;
   a.ray_records = slots * opt.method.bits_per_ray() * t.register_bit_mm2;
   a.method_record_bits = slots * (opt.method.bits_per_ray() - kBaseRayBits) * t.register_bit_mm2;

@@ -123,3 +123,18 @@ TEST_CASE("energy: memory, leakage and per-instance energy of a cycle-level run,
   CHECK(e["per_unit_instance_pj"]["l2_cache"].get<double>() ==
         Approx(256 + 4096 * 8 * 1e-6 * 0.5 * 1e-6 * 1e12));
 }
+
+TEST_CASE("energy: an emission unit's operators are shared over the cycles its width gives a ray", "[energy]") {
+  hw::HwConfig cfg;
+  cfg.memory.ideal = true;
+  ReplayOptions opt;
+  std::string error;
+  REQUIRE(parse_method("tmin", opt.method, error));
+  // tmin: |d| = sqrt(dot(d, d)), eps / |d|: fmul 3, fadd 2, fsqrt 1, fdiv 1 (7 operations).
+  cfg.source.emission_width = 0;  // no unit: one operator per operation
+  CHECK(hw::hw_area(unit_tech(), cfg, opt).emission_unit == 7);
+  cfg.source.emission_width = 8;  // 7 operations in one cycle: still one operator each
+  CHECK(hw::hw_area(unit_tech(), cfg, opt).emission_unit == 7);
+  cfg.source.emission_width = 2;  // ceil(7 / 2) = 4 cycles a ray: one operator of each kind
+  CHECK(hw::hw_area(unit_tech(), cfg, opt).emission_unit == 4);
+}
