@@ -226,6 +226,10 @@ void Accelerator::activate() {
 }
 
 void Accelerator::complete_run() {
+  // schedule_next lands SystemC time on the last ray's cycle; a later one would misplace the event.
+  if (clock_.now() != sink_->counters().last_cycle)
+    throw std::logic_error(fmt::format("{}: completion at cycle {}, after the last ray's finish at cycle {}", name(),
+                                       clock_.now(), sink_->counters().last_cycle));
   completed_ = true;
   if (completion_callback_) completion_callback_(sink_->counters().last_cycle);
   completion_.notify();  // immediate: waiters run in this evaluation phase, before sc_stop() takes effect
@@ -237,8 +241,7 @@ bool Accelerator::schedule_next(uint64_t now) {
   if (engine_->stopped()) return false;
   if (!at_wait) {
     if (!engine_->finished()) {
-      uint64_t next = std::max(now + config_.quantum_cycles, engine_->next_event_cycle());
-      if (completion_due()) next = std::min(next, sink_->counters().last_cycle);  // complete on the last ray's cycle
+      const uint64_t next = std::max(now + config_.quantum_cycles, engine_->next_event_cycle());
       next_trigger(clock_.period() * static_cast<double>(next - now));
     } else if (sink_->counters().last_cycle > now) {
       next_trigger(clock_.period() * static_cast<double>(sink_->counters().last_cycle - now));  // land on the last cycle
@@ -251,7 +254,6 @@ bool Accelerator::schedule_next(uint64_t now) {
   }
   uint64_t next = std::min(l2_->next_send_cycle(), l2_->next_response_cycle());
   if (!engine_->finished()) next = std::min(next, engine_->next_event_cycle());
-  if (completion_due()) next = std::min(next, sink_->counters().last_cycle);  // complete on the last ray's cycle
   if (next == kPendingCycle) {
     next_trigger(kick_);  // only the target's responses are left to wait for
     return true;

@@ -9,10 +9,15 @@
 // built-in memory: its cycles are those of
 // `vbsim replay TRACE -m validity-bit --mode cycle --preset PRESET`.
 //
-//   clocked_design TRACE [PRESET]   (preset: small by default); prints "key value" lines
+//   clocked_design TRACE [PRESET [STOP_AFTER_RAYS]]   prints "key value" lines
+//
+// PRESET is small by default. STOP_AFTER_RAYS ends the run early (the stop flag,
+// set from the result callback once that many rays have finished): sc_start()
+// returns then too, with a partial run and no completion.
 //
 // Built with the project, and out of tree against the installed package
 // (testbench/examples/CMakeLists.txt: find_package(vbsim), vbsim::vbsim).
+#include <atomic>
 #include <cstdint>
 #include <cstdio>
 #include <exception>
@@ -82,9 +87,10 @@ class CompletionWaiter final : public sc_core::sc_module {
 };
 
 int run(int argc, char** argv) {
-  if (argc < 2) throw std::invalid_argument("usage: clocked_design TRACE [PRESET]");
+  if (argc < 2) throw std::invalid_argument("usage: clocked_design TRACE [PRESET [STOP_AFTER_RAYS]]");
   const std::string trace = argv[1];
   const std::string preset = argc > 2 ? argv[2] : "small";
+  const uint64_t stop_after = argc > 3 ? std::stoull(argv[3]) : 0;  // 0: run to the end
 
   auto source = vbsim::open_trace(trace);
   const vbsim::SceneAndBvh sb = vbsim::load_trace_scene(source->header());
@@ -96,9 +102,13 @@ int run(int argc, char** argv) {
   const vbsim::hw::HwConfig config = vbsim::hw::load_preset(preset, "clocked_design");
   vbsim::hw::Accelerator accelerator("accelerator", config, sb.scene, sb.bvh, options);
   accelerator.set_feed([&](vbsim::TraceRay& ray) { return source->next(ray); });
-  uint64_t hits = 0;
-  accelerator.set_result_callback(
-      [&](const vbsim::TraceRay&, const vbsim::RayOutcome& out, uint64_t, uint64_t) { hits += out.answer >= 0; });
+  uint64_t hits = 0, finished = 0;
+  std::atomic<bool> stop{false};
+  accelerator.set_stop_flag(&stop);
+  accelerator.set_result_callback([&](const vbsim::TraceRay&, const vbsim::RayOutcome& out, uint64_t, uint64_t) {
+    hits += out.answer >= 0;
+    if (++finished == stop_after) stop = true;
+  });
   uint64_t callback_cycles = 0;
   int callbacks = 0;
   accelerator.set_completion_callback([&](uint64_t cycles) {
@@ -113,12 +123,13 @@ int run(int argc, char** argv) {
   monitor.clk(clock);
   CompletionWaiter waiter("waiter", accelerator.completion_event());
 
-  sc_core::sc_start();  // returns: the accelerator calls sc_stop() at completion
-  accelerator.check();
+  sc_core::sc_start();  // returns: the accelerator calls sc_stop() at completion (or when stopped early)
+  accelerator.check();  // an error inside the model, a stuck or lost ray: thrown here
 
   const vbsim::hw::HwCounters c = accelerator.chip_counters();
   const double period_ns = cycle.period().to_seconds() * 1e9;
   std::printf("sc_start_returned 1\n");
+  std::printf("partial %d\n", accelerator.partial() ? 1 : 0);
   std::printf("rays %llu\n", static_cast<unsigned long long>(c.rays));
   std::printf("hits %llu\n", static_cast<unsigned long long>(hits));
   std::printf("cycles %llu\n", static_cast<unsigned long long>(c.cycles));

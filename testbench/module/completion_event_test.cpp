@@ -97,7 +97,7 @@ uint64_t plain_run_cycles(const TraceInMemory& t, const HwConfig& cfg) {
 
 }  // namespace
 
-TEST_CASE("the completion event fires once, at the last ray's finish, with the cycles of a plain run",
+TEST_CASE("the completion event fires once at the last ray's finish and a plain run's cycles stay",
           "[module][completion]") {
   const TraceInMemory t = read_trace(std::string(VBSIM_SOURCE_DIR) + "/traces/bunny/paths.jsonl");
   for (const char* preset : {"small", "large"})

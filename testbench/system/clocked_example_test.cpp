@@ -5,7 +5,8 @@
 // completion event reached the user's thread once and the callback was called
 // once, both at that time; the clock ran throughout; and the accelerator's
 // cycles and hits are those of a plain `vbsim replay --mode cycle` of the same
-// trace and preset.
+// trace and preset. Stopped early, the run ends the simulation too, without
+// a completion.
 #include <catch2/catch.hpp>
 
 #include <nlohmann/json.hpp>
@@ -14,7 +15,7 @@
 
 using namespace vbsim::test;
 
-TEST_CASE("a design with its own clock stops at the accelerator's completion, with a plain run's cycles",
+TEST_CASE("a design with its own clock stops at the accelerator's completion with a plain run's cycles",
           "[system][embed][completion]") {
   const std::string trace = source_dir() + "/traces/bunny/paths.jsonl";
   const auto dir = scratch_dir("clocked_design");
@@ -24,6 +25,7 @@ TEST_CASE("a design with its own clock stops at the accelerator's completion, wi
     const uint64_t cycles = field_u64(f, "cycles");
     const double period_ns = field_double(f, "period_ns");
     CHECK(field_u64(f, "sc_start_returned") == 1);
+    CHECK(field_u64(f, "partial") == 0);
     CHECK(field_u64(f, "rays") == 1008);
     CHECK(field_u64(f, "completion_callbacks") == 1);
     CHECK(field_u64(f, "completion_callback_cycles") == cycles);
@@ -46,4 +48,15 @@ TEST_CASE("a design with its own clock stops at the accelerator's completion, wi
     CHECK(s["hw"]["cycles"].get<uint64_t>() == cycles);
     CHECK(s["hits"].get<uint64_t>() == field_u64(f, "hits"));
   }
+}
+
+TEST_CASE("a design with its own clock stops when the accelerator's run is stopped early", "[system][embed][completion]") {
+  const ExampleFields f =
+      run_example_program(VBSIM_CLOCKED_EXAMPLE, source_dir() + "/traces/bunny/paths.jsonl small 100", "cycles");
+  CHECK(field_u64(f, "sc_start_returned") == 1);
+  CHECK(field_u64(f, "partial") == 1);
+  CHECK(field_u64(f, "rays") >= 100);
+  CHECK(field_u64(f, "rays") < 1008);
+  CHECK(field_u64(f, "completion_callbacks") == 0);
+  CHECK(field_u64(f, "completion_notifications") == 0);
 }
