@@ -35,5 +35,6 @@ install(FILES ${PROJECT_BINARY_DIR}/package/vbsimConfig.cmake ${PROJECT_BINARY_D
 
 # pkg-config: the prefix found from the .pc file's own place (${pcfiledir}).
 file(RELATIVE_PATH VBSIM_PC_TO_PREFIX /prefix/${CMAKE_INSTALL_LIBDIR}/pkgconfig /prefix)
+string(REGEX REPLACE "/$" "" VBSIM_PC_TO_PREFIX "${VBSIM_PC_TO_PREFIX}")
 configure_file(${PROJECT_SOURCE_DIR}/scripts/cmake/vbsim.pc.in ${PROJECT_BINARY_DIR}/package/vbsim.pc @ONLY)
 install(FILES ${PROJECT_BINARY_DIR}/package/vbsim.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)

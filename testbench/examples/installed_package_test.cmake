@@ -4,9 +4,10 @@
 # checks that they print what the examples built with the project print (the
 # same library, headers and presets), and that the installed library reads
 # the installed presets.
+# Then one example again, built with the flags of the installed vbsim.pc.
 #   cmake -DBUILD_DIR=... -DSOURCE_DIR=... -DWORK_DIR=... -DIN_TREE_EMBED=... -DIN_TREE_CLOCKED=...
-#         -P installed_package_test.cmake
-foreach(var BUILD_DIR SOURCE_DIR WORK_DIR IN_TREE_EMBED IN_TREE_CLOCKED)
+#         -DCXX_COMPILER=... -P installed_package_test.cmake
+foreach(var BUILD_DIR SOURCE_DIR WORK_DIR IN_TREE_EMBED IN_TREE_CLOCKED CXX_COMPILER)
   if(NOT DEFINED ${var})
     message(FATAL_ERROR "installed_package_test: -D${var}= is required")
   endif()
@@ -43,7 +44,7 @@ endif()
 
 # -j2 and ccache (when found, testbench/examples/CMakeLists.txt): one file per example.
 run("configure" ${CMAKE_COMMAND} -S ${SOURCE_DIR}/testbench/examples -B ${build} -DCMAKE_BUILD_TYPE=Release
-    -DCMAKE_PREFIX_PATH=${prefix})
+    -DCMAKE_PREFIX_PATH=${prefix} -DCMAKE_CXX_COMPILER=${CXX_COMPILER})
 run("build" ${CMAKE_COMMAND} --build ${build} -j 2)
 
 set(trace ${SOURCE_DIR}/traces/bunny/paths.jsonl)
@@ -76,6 +77,7 @@ foreach(example embed clocked)
                         "the example built with the project printed\n${out_in_tree}")
   endif()
   message(STATUS "${installed}:\n${out_installed}")
+  set(${example}_in_tree "${out_in_tree}")
 endforeach()
 
 # VBSIM_DATA_DIR overrides the package's data directory (io/data_dir.h).
@@ -83,3 +85,30 @@ file(COPY ${prefix}/share/vbsim/ DESTINATION ${WORK_DIR}/moved-data)
 set(ENV{VBSIM_DATA_DIR} ${WORK_DIR}/moved-data)
 run("${build}/embed_accelerator with VBSIM_DATA_DIR" ${build}/embed_accelerator ${trace} 80)
 expect_line("${output}" "presets_dir ${WORK_DIR}/moved-data/presets" "the presets of VBSIM_DATA_DIR")
+
+# pkg-config: vbsim.pc finds the prefix from its own place; one example built
+# with its flags (the data directory given by its `datadir` variable).
+find_program(PKG_CONFIG pkg-config REQUIRED)
+find_program(CCACHE ccache)
+set(compile ${CXX_COMPILER})
+if(CCACHE)
+  set(compile ${CCACHE} ${CXX_COMPILER})
+endif()
+set(ENV{PKG_CONFIG_PATH} ${prefix}/lib/pkgconfig)
+run("pkg-config" ${PKG_CONFIG} --cflags --libs vbsim)
+separate_arguments(pc_flags UNIX_COMMAND "${output}")
+run("pkg-config datadir" ${PKG_CONFIG} --variable=datadir vbsim)
+string(STRIP "${output}" pc_datadir)
+file(REAL_PATH "${pc_datadir}" pc_datadir)
+file(REAL_PATH "${prefix}/share/vbsim" installed_datadir)
+if(NOT pc_datadir STREQUAL installed_datadir)
+  message(FATAL_ERROR "installed_package_test: vbsim.pc's datadir is ${pc_datadir}, not ${installed_datadir}")
+endif()
+run("build with pkg-config" ${compile} -std=c++17 -O2 ${SOURCE_DIR}/testbench/examples/clocked_design.cpp
+    -o ${WORK_DIR}/clocked_design_pkg_config ${pc_flags})
+set(ENV{VBSIM_DATA_DIR} ${pc_datadir})
+run("clocked_design built with pkg-config" ${WORK_DIR}/clocked_design_pkg_config ${trace} small)
+if(NOT output STREQUAL clocked_in_tree)
+  message(FATAL_ERROR "installed_package_test: clocked_design built with pkg-config printed\n${output}\n"
+                      "the example built with the project printed\n${clocked_in_tree}")
+endif()
