@@ -26,8 +26,11 @@
 //
 // Use in a user's sc_main: construct it (in any simulation context), bind
 // memory_socket() when external_memory is set, give it a trace (set_feed) and a
-// result callback, sc_start(), then check() and read report(). Several runs in
-// one process: one simulation context each (hw/simulation_context.h).
+// result callback, sc_start(), then check() and read report(). In a design
+// whose other processes never stop (a free-running sc_clock), completion_event()
+// says when every ray has finished and set_stop_at_completion() ends sc_start()
+// there. Several runs in one process: one simulation context each
+// (hw/simulation_context.h).
 #pragma once
 #include <atomic>
 #include <chrono>
