@@ -20,10 +20,11 @@ inline ExampleFields run_example_program(const std::string& binary, const std::s
   const RunResult r = run_command("SYSTEMC_DISABLE_COPYRIGHT_MESSAGE=1 " + binary + " " + args + " 2>&1");
   INFO(r.output);
   REQUIRE(r.exit_code == 0);
-  ExampleFields f;
+  ExampleFields f;  // a line is "key value"; the value runs to the end of the line (a path may hold spaces)
   std::istringstream in(r.output);
-  std::string key, value;
-  while (in >> key >> value) f[key] = value;
+  std::string line;
+  while (std::getline(in, line))
+    if (const size_t space = line.find(' '); space != std::string::npos) f[line.substr(0, space)] = line.substr(space + 1);
   REQUIRE(f.count(required));
   return f;
 }
