@@ -2,9 +2,9 @@
 // completion callback): notified exactly once, at the SystemC time of the last
 // ray's finish (the run's cycles x the clock period, and the latest finish
 // cycle the result sink reported), with loosely and approximately timed
-// memory, an ideal memory and quanta from 1 to 4096 cycles; the cycles are
-// those of a plain run of the same configuration; a stopped run never notifies
-// it. (The stop_at_completion option calls sc_stop(), which a Catch test must
+// memory, an ideal memory, an approximately timed target of the user's own and
+// quanta from 1 to 4096 cycles; the cycles are those of a plain run of the same
+// configuration; a stopped run never notifies it. (The stop_at_completion option calls sc_stop(), which a Catch test must
 // not: testbench/examples/clocked_design.cpp and its system test cover it.)
 #include <catch2/catch.hpp>
 
@@ -15,6 +15,7 @@
 #include <systemc>
 
 #include "accelerator_harness.h"
+#include "banked_memory.h"
 #include "hw/cycle_replay.h"
 #include "trace_in_memory.h"
 #include "../unit/three_floors.h"
@@ -30,14 +31,19 @@ struct Moment {
   uint64_t delta;
 };
 
-/// A module of the user's design that waits on the completion event.
+/// A module of the user's design that waits on the completion event, and
+/// (with `memory`) the user's approximately timed memory target behind the L2.
 class CompletionWatcher final : public sc_core::sc_module {
  public:
   std::vector<Moment> seen;
 
-  CompletionWatcher(sc_core::sc_module_name name, const sc_core::sc_event& completion)
-      : sc_core::sc_module(name), completion_(completion) {
+  CompletionWatcher(sc_core::sc_module_name name, Accelerator& acc, const BankedMemoryConfig* memory = nullptr)
+      : sc_core::sc_module(name), completion_(acc.completion_event()) {
     SC_THREAD(watch);
+    if (memory) {
+      memory_ = std::make_unique<BankedMemory>("memory", *memory, CycleClock(acc.config().clock_mhz).period());
+      acc.memory_socket().bind(memory_->socket);
+    }
   }
 
  private:
@@ -49,6 +55,7 @@ class CompletionWatcher final : public sc_core::sc_module {
     }
   }
   const sc_core::sc_event& completion_;
+  std::unique_ptr<BankedMemory> memory_;
 };
 
 struct Callback {
@@ -59,15 +66,17 @@ struct Callback {
 
 /// Runs `t` on `cfg` with a watcher and a callback; checks the completion
 /// signal against the run's cycles; returns the cycles.
-uint64_t check_completion(const TraceInMemory& t, const HwConfig& cfg) {
+uint64_t check_completion(const TraceInMemory& t, const HwConfig& cfg, const BankedMemoryConfig* memory = nullptr) {
   Callback cb;
-  AcceleratorHarness h(t.sb.scene, t.sb.bvh, cfg, ReplayOptions{}, {}, [&cb](Accelerator& acc) {
+  AcceleratorUnits units;
+  units.external_memory = memory != nullptr;
+  AcceleratorHarness h(t.sb.scene, t.sb.bvh, cfg, ReplayOptions{}, units, [&cb, memory](Accelerator& acc) {
     acc.set_completion_callback([&cb](uint64_t cycles) {
       ++cb.calls;
       cb.cycles = cycles;
       cb.at = {sc_core::sc_time_stamp(), sc_core::sc_delta_count()};
     });
-    return std::make_unique<CompletionWatcher>("watcher", acc.completion_event());
+    return std::make_unique<CompletionWatcher>("user_design", acc, memory);
   });
   h.run(t.rays);
   const auto& watcher = *h.attached<CompletionWatcher>();
@@ -113,6 +122,20 @@ TEST_CASE("the completion event fires once at the last ray's finish and a plain 
       }
 }
 
+TEST_CASE("the completion event fires at the last ray's finish with a memory target of the user's own",
+          "[module][completion]") {
+  const TraceInMemory t = read_trace(std::string(VBSIM_SOURCE_DIR) + "/traces/bunny/paths.jsonl");
+  BankedMemoryConfig bank;  // approximately timed, latency by open rows: responses in the target's own order
+  bank.banks = 4;
+  for (const uint32_t quantum : {1u, 256u}) {
+    INFO("quantum " << quantum);
+    HwConfig cfg = load_preset("small", "test");
+    cfg.quantum_cycles = quantum;
+    cfg.memory.tlm = TlmStyle::ApproximatelyTimed;
+    check_completion(t, cfg, &bank);
+  }
+}
+
 TEST_CASE("a run stopped early never notifies completion", "[module][completion]") {
   const TraceInMemory t = read_trace(std::string(VBSIM_SOURCE_DIR) + "/traces/bunny/paths.jsonl");
   const std::atomic<bool> stop{true};
@@ -121,7 +144,7 @@ TEST_CASE("a run stopped early never notifies completion", "[module][completion]
                        [&](Accelerator& acc) {
                          acc.set_stop_flag(&stop);
                          acc.set_completion_callback([&calls](uint64_t) { ++calls; });
-                         return std::make_unique<CompletionWatcher>("watcher", acc.completion_event());
+                         return std::make_unique<CompletionWatcher>("user_design", acc);
                        });
   h.run(t.rays);
   CHECK(h.accelerator().partial());
