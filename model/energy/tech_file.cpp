@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "io/data_dir.h"
 #include "replay/config_fields.h"
 
 namespace vbsim {
@@ -88,7 +89,7 @@ TechFile load_tech_file(const std::string& path) {
   return t;
 }
 
-std::string default_tech_path() { return std::string(VBSIM_TECH_DIR) + "/45nm.json"; }
+std::string default_tech_path() { return tech_dir() + "/45nm.json"; }
 
 double TechFile::energy_pj(const OpCounts& c) const {
   const std::array<int, kOpKinds> n = op_count_array(c);

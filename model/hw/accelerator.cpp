@@ -216,16 +216,29 @@ void Accelerator::activate() {
         progress_(*engine_);
       }
     }
-    schedule_next(now);
+    if (completion_due() && sink_->counters().last_cycle <= now) complete_run();
+    if (!schedule_next(now) && !completed_ && stop_at_completion_) sc_core::sc_stop();  // ended early
   } catch (...) {
     error_ = std::current_exception();
     if (engine_) engine_->stop();
+    if (stop_at_completion_) sc_core::sc_stop();
   }
 }
 
-void Accelerator::schedule_next(uint64_t now) {
+void Accelerator::complete_run() {
+  // schedule_next lands SystemC time on the last ray's cycle; a later one would misplace the event.
+  if (clock_.now() != sink_->counters().last_cycle)
+    throw std::logic_error(fmt::format("{}: completion at cycle {}, after the last ray's finish at cycle {}", name(),
+                                       clock_.now(), sink_->counters().last_cycle));
+  completed_ = true;
+  if (completion_callback_) completion_callback_(sink_->counters().last_cycle);
+  completion_.notify();  // immediate: waiters run in this evaluation phase, before sc_stop() takes effect
+  if (stop_at_completion_) sc_core::sc_stop();
+}
+
+bool Accelerator::schedule_next(uint64_t now) {
   const bool at_wait = at_busy();
-  if (engine_->stopped()) return;
+  if (engine_->stopped()) return false;
   if (!at_wait) {
     if (!engine_->finished()) {
       const uint64_t next = std::max(now + config_.quantum_cycles, engine_->next_event_cycle());
@@ -234,17 +247,20 @@ void Accelerator::schedule_next(uint64_t now) {
       next_trigger(clock_.period() * static_cast<double>(sink_->counters().last_cycle - now));  // land on the last cycle
     } else if (at_ && engine_->waiting_for_memory() != 0) {
       next_trigger(kick_);  // a response will come
+    } else {
+      return false;
     }
-    return;
+    return true;
   }
   uint64_t next = std::min(l2_->next_send_cycle(), l2_->next_response_cycle());
   if (!engine_->finished()) next = std::min(next, engine_->next_event_cycle());
   if (next == kPendingCycle) {
     next_trigger(kick_);  // only the target's responses are left to wait for
-    return;
+    return true;
   }
   next = std::max(next, now + 1);
   next_trigger(clock_.period() * static_cast<double>(next - now), kick_);
+  return true;
 }
 
 std::string Accelerator::memory_target_name() const {

@@ -26,8 +26,11 @@
 //
 // Use in a user's sc_main: construct it (in any simulation context), bind
 // memory_socket() when external_memory is set, give it a trace (set_feed) and a
-// result callback, sc_start(), then check() and read report(). Several runs in
-// one process: one simulation context each (hw/simulation_context.h).
+// result callback, sc_start(), then check() and read report(). In a design
+// whose other processes never stop (a free-running sc_clock), completion_event()
+// says when every ray has finished and set_stop_at_completion() ends sc_start()
+// there. Several runs in one process: one simulation context each
+// (hw/simulation_context.h).
 #pragma once
 #include <atomic>
 #include <chrono>
@@ -101,6 +104,26 @@ class Accelerator final : private AcceleratorChecks, public sc_core::sc_module, 
   /// Records per-instance values (VCD) and busy intervals (timeline); either may be null.
   void set_tracing(VcdRecorder* vcd, TimelineRecorder* timeline);
 
+  // ---- completion (a design with processes of its own, e.g. a free-running sc_clock) ----
+  /// Notified once, immediately, when every ray of the feed has finished, at
+  /// the SystemC time of the last ray's finish: start + cycles x clock period
+  /// (chip_counters().cycles). A run that fails or is stopped early never
+  /// notifies it.
+  const sc_core::sc_event& completion_event() const { return completion_; }
+  /// Called once at completion, before the processes waiting on
+  /// completion_event() run, with the cycle of the last ray's finish.
+  void set_completion_callback(std::function<void(uint64_t cycles)> callback) {
+    completion_callback_ = std::move(callback);
+  }
+  /// On: sc_stop() when the run ends, so that sc_start() returns although
+  /// other processes never stop: at completion (after the callback and the
+  /// notification), or when the run ends early (an error inside the model, the
+  /// stop flag, a run with nothing left to do and rays unfinished); check()
+  /// tells which. Off (default): the simulation goes on as long as other
+  /// processes have events (without any, sc_start() returns at completion).
+  void set_stop_at_completion(bool on) { stop_at_completion_ = on; }
+  bool completed() const { return completed_; }
+
   // ---- after sc_start ----
   /// Rethrows an error raised inside the simulation; throws std::runtime_error
   /// naming the stuck slots when the run ended with rays unfinished although it
@@ -133,7 +156,11 @@ class Accelerator final : private AcceleratorChecks, public sc_core::sc_module, 
   SC_HAS_PROCESS(Accelerator);
   void start_of_simulation() override;
   void activate();
-  void schedule_next(uint64_t now);
+  /// Arms the next activation; false when none is armed (the run has ended).
+  bool schedule_next(uint64_t now);
+  bool completion_due() const { return !completed_ && engine_->complete() && !engine_->stopped(); }
+  /// The notification, the callback and (stop_at_completion) sc_stop().
+  void complete_run();
   bool at_busy() const { return at_ && l2_ && (l2_->busy() || l2_->next_response_cycle() != kPendingCycle); }
   EngineParts engine_parts();
   /// The hierarchical name of the module answering the L2's requests.
@@ -165,6 +192,10 @@ class Accelerator final : private AcceleratorChecks, public sc_core::sc_module, 
   const std::atomic<bool>* stop_ = nullptr;
   std::function<void(const CycleEngine&)> progress_;
   sc_core::sc_event kick_;
+  sc_core::sc_event completion_;
+  std::function<void(uint64_t)> completion_callback_;
+  bool stop_at_completion_ = false;
+  bool completed_ = false;
   uint64_t limit_ = 0;  // the scheduler handles events before this cycle (lowered by AT requests)
   uint64_t activations_ = 0;
   std::exception_ptr error_;

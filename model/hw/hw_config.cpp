@@ -1,5 +1,6 @@
 #include "hw/hw_config.h"
 
+#include "io/data_dir.h"
 #include "replay/config_fields.h"
 
 namespace vbsim::hw {
@@ -22,7 +23,7 @@ nlohmann::json triangle_json(const HwConfig& c) {
   return j;
 }
 
-std::string preset_path(const std::string& name) { return std::string(VBSIM_PRESETS_DIR) + "/" + name + ".json"; }
+std::string preset_path(const std::string& name) { return presets_dir() + "/" + name + ".json"; }
 
 void read_unit(Fields& parent, const std::string& key, UnitConfig& u) {
   if (const auto* v = parent.get(key)) {

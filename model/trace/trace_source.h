@@ -4,6 +4,7 @@
 // the whole trace; every ray it yields has passed the format's validation.
 #pragma once
 #include <cstdint>
+#include <memory>
 #include <string>
 
 #include "trace/trace_error.h"
@@ -47,5 +48,10 @@ class TraceSink {
   /// Path of the file being written.
   virtual const std::string& path() const = 0;
 };
+
+/// Opens the trace `path`, text or binary, as a TraceSource (declared here for
+/// the user of a source; trace/trace_file.h, with the other operations on trace
+/// files, documents it). Throws TraceError.
+std::unique_ptr<TraceSource> open_trace(const std::string& path);
 
 }  // namespace vbsim

@@ -4,9 +4,13 @@
 // loosely timed), feeds it a trace and prints the statistics it reads back.
 //
 //   embed_accelerator [TRACE] [LATENCY_CYCLES]   (default: the bundled trace, 80 cycles)
+//
+// Built with the project, and out of tree against the installed package
+// (testbench/examples/CMakeLists.txt: find_package(vbsim), vbsim::vbsim).
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <stdexcept>
 #include <string>
 
 #include <systemc>
@@ -14,8 +18,8 @@
 
 #include "datapath/self_intersection_method.h"
 #include "hw/accelerator.h"
+#include "io/data_dir.h"
 #include "replay/replay_run.h"
-#include "trace/trace_file.h"
 #include "trace/trace_source.h"
 
 namespace {
@@ -48,7 +52,12 @@ class UserMemory : public sc_core::sc_module, public tlm::tlm_fw_transport_if<> 
 };
 
 int run(int argc, char** argv) {
+#ifdef VBSIM_SOURCE_DIR
   const std::string trace = argc > 1 ? argv[1] : std::string(VBSIM_SOURCE_DIR) + "/traces/bunny/paths.jsonl";
+#else
+  if (argc < 2) throw std::invalid_argument("usage: embed_accelerator TRACE [LATENCY_CYCLES]");
+  const std::string trace = argv[1];
+#endif
   const unsigned latency = argc > 2 ? static_cast<unsigned>(std::atoi(argv[2])) : 80;
 
   auto source = vbsim::open_trace(trace);
@@ -85,6 +94,7 @@ int run(int argc, char** argv) {
               hw["instances"]["accelerator.l2_cache"]["dram_requests"].get<unsigned long long>());
   std::printf("core_0_l1_hit_rate %.4f\n", hw["instances"]["accelerator.core_0.l1_cache"]["hit_rate"].get<double>());
   std::printf("systemc_time_ns %.1f\n", sc_core::sc_time_stamp().to_seconds() * 1e9);
+  std::printf("presets_dir %s\n", vbsim::presets_dir().c_str());
   return 0;
 }
 

@@ -5,40 +5,21 @@
 // target gives a longer run.
 #include <catch2/catch.hpp>
 
-#include <cstdio>
-#include <map>
-#include <sstream>
-
 #include <nlohmann/json.hpp>
 
-#include "run_vbsim.h"
+#include "example_output.h"
 
 using namespace vbsim::test;
 
 namespace {
 
-/// "key value" lines of the example's output, run on the bundled trace with a
-/// memory of `latency` cycles.
-std::map<std::string, std::string> run_example(unsigned latency) {
-  const std::string cmd = std::string("SYSTEMC_DISABLE_COPYRIGHT_MESSAGE=1 ") + VBSIM_EMBED_EXAMPLE + " " +
-                          source_dir() + "/traces/bunny/paths.jsonl " + std::to_string(latency) + " 2>&1";
-  FILE* pipe = popen(cmd.c_str(), "r");
-  REQUIRE(pipe);
-  std::string out;
-  char buf[4096];
-  size_t n;
-  while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) out.append(buf, n);
-  INFO(out);
-  REQUIRE(pclose(pipe) == 0);
-  std::map<std::string, std::string> f;
-  std::istringstream in(out);
-  std::string key, value;
-  while (in >> key >> value) f[key] = value;
-  REQUIRE(f.count("cycles"));
-  return f;
+/// The example run on the bundled trace with a memory of `latency` cycles.
+ExampleFields run_example(unsigned latency) {
+  return run_example_program(VBSIM_EMBED_EXAMPLE, source_dir() + "/traces/bunny/paths.jsonl " + std::to_string(latency),
+                             "cycles");
 }
 
-uint64_t num(const std::map<std::string, std::string>& f, const char* key) { return std::stoull(f.at(key)); }
+uint64_t num(const ExampleFields& f, const char* key) { return field_u64(f, key); }
 
 }  // namespace
 
