@@ -1,5 +1,7 @@
 #include "hw/hw_config.h"
 
+#include <fmt/format.h>
+
 #include "io/data_dir.h"
 #include "replay/config_fields.h"
 
@@ -38,10 +40,24 @@ void read_cache(Fields& parent, const std::string& key, CacheConfig& c) {
   if (const auto* v = parent.get(key)) {
     Fields f(*v, parent.file(), parent.path(key));
     f.integer("size_bytes", c.size_bytes, 64, 1u << 31);
-    f.integer("ways", c.ways, 1, 1024);
+    // "full": one set of every line (a fully associative cache), resolved once
+    // the size and line size are known; echoed as that number of ways.
+    const nlohmann::json* ways = f.get("ways");
+    const bool full = ways && ways->is_string();
+    if (full && *ways != "full") fail(f.file(), f.path("ways"), "must be an integer or \"full\"");
+    if (!full) f.integer("ways", c.ways, 1, kMaxCacheWays);
     f.integer("line_bytes", c.line_bytes, 16, 4096);
     f.integer("hit_latency", c.hit_latency, 0, 100000);
     f.integer("mshrs", c.mshrs, 1, 4096);
+    if (full) {
+      if (c.size_bytes % c.line_bytes != 0)
+        fail(f.file(), f.path("ways"), "\"full\" needs size_bytes to be a whole number of lines");
+      if (c.size_bytes / c.line_bytes > kMaxCacheWays)
+        fail(f.file(), f.path("ways"),
+             fmt::format("\"full\" would give {} ways; a cache has at most {}", c.size_bytes / c.line_bytes,
+                         kMaxCacheWays));
+      c.ways = c.size_bytes / c.line_bytes;
+    }
   }
 }
 
@@ -50,8 +66,6 @@ void check_cache(const std::string& file, const std::string& field, const CacheC
   if (!pow2(c.line_bytes)) fail(file, field + ".line_bytes", "must be a power of two");
   if (c.size_bytes % (static_cast<uint64_t>(c.ways) * c.line_bytes) != 0)
     fail(file, field + ".size_bytes", "must be a multiple of ways * line_bytes");
-  if (!pow2(c.size_bytes / (c.ways * c.line_bytes)))
-    fail(file, field + ".size_bytes", "must give a power-of-two number of sets (size_bytes / (ways * line_bytes))");
 }
 
 void read_memory(Fields& parent, MemoryConfig& m) {

@@ -19,7 +19,8 @@ bool is_power_of_two(uint64_t v) { return v != 0 && (v & (v - 1)) == 0; }
 void check_cache(const CacheConfig& c, const std::string& name, uint32_t min_hit_latency) {
   if (c.line_bytes == 0 || !is_power_of_two(c.line_bytes))
     reject(name + ".line_bytes", "must be a power of two, got " + std::to_string(c.line_bytes));
-  if (c.ways == 0) reject(name + ".ways", "must be at least 1");
+  if (c.ways == 0 || c.ways > kMaxCacheWays)
+    reject(name + ".ways", "must be 1 to " + std::to_string(kMaxCacheWays) + ", got " + std::to_string(c.ways));
   if (c.size_bytes == 0) reject(name + ".size_bytes", "must be greater than 0");
   const uint64_t set_bytes = uint64_t{c.ways} * c.line_bytes;
   if (c.size_bytes < set_bytes)

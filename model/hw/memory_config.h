@@ -6,6 +6,9 @@
 namespace vbsim::hw {
 
 /// One cache level. Sizes in bytes; latencies in core clock cycles.
+/// The most ways a cache may have (a lookup compares every way of its set).
+constexpr uint32_t kMaxCacheWays = 65536;
+
 struct CacheConfig {
   uint32_t size_bytes = 0;
   uint32_t ways = 0;

@@ -51,6 +51,9 @@ TEST_CASE("bad hw values are errors naming the field", "[hwconfig]") {
       {R"({"memory": {"ideal": 1}})", "field 'hw.memory.ideal'"},
       {R"({"memory": {"l1": {"line_bytes": 48}}})", "field 'hw.memory.l1.line_bytes'"},
       {R"({"memory": {"l2": {"size_bytes": 1000}}})", "field 'hw.memory.l2.size_bytes'"},
+      {R"({"memory": {"l1": {"ways": "half"}}})", "field 'hw.memory.l1.ways'"},
+      {R"({"memory": {"l1": {"ways": 65537}}})", "field 'hw.memory.l1.ways'"},
+      {R"({"memory": {"l2": {"ways": "full", "size_bytes": 8388608}}})", "field 'hw.memory.l2.ways'"},
       {R"({"memory": {"dram_bytes_per_cycle": 0}})", "field 'hw.memory.dram_bytes_per_cycle'"},
       {R"({"memory": {"l3": {}}})", "field 'hw.memory.l3'"},
       {R"({"sim": {"quantum_cycles": 0}})", "field 'hw.sim.quantum_cycles'"},
@@ -63,6 +66,26 @@ TEST_CASE("bad hw values are errors naming the field", "[hwconfig]") {
     CHECK_THROWS_WITH(apply_hw_config(nlohmann::json::parse(text), "cfg.json", c),
                       Catch::StartsWith("cfg.json: ") && Catch::Contains(field));
   }
+}
+
+TEST_CASE("caches of any number of sets, and fully associative ones", "[hwconfig]") {
+  HwConfig c;
+  // 3 sets of 4 ways of 64 bytes; 5 sets of 1 way.
+  apply_hw_config(nlohmann::json::parse(R"({"memory": {"l1": {"size_bytes": 768, "ways": 4},
+                                            "l2": {"size_bytes": 320, "ways": 1}}})"),
+                  "f.json", c);
+  CHECK(c.memory.l1.size_bytes / (c.memory.l1.ways * c.memory.l1.line_bytes) == 3);
+  CHECK(c.memory.l2.size_bytes / (c.memory.l2.ways * c.memory.l2.line_bytes) == 5);
+  // "full": one set holding every line, whatever the order of the fields; the
+  // echo is the number of ways, which reads back to the same cache.
+  HwConfig f;
+  apply_hw_config(nlohmann::json::parse(R"({"memory": {"l1": {"ways": "full", "size_bytes": 1024, "line_bytes": 32}}})"),
+                  "f.json", f);
+  CHECK(f.memory.l1.ways == 32);
+  CHECK(hw_config_json(f)["memory"]["l1"]["ways"] == 32);
+  // The largest fully associative cache: 65,536 lines.
+  apply_hw_config(nlohmann::json::parse(R"({"memory": {"l2": {"ways": "full", "size_bytes": 4194304}}})"), "f.json", f);
+  CHECK(f.memory.l2.ways == 65536);
 }
 
 TEST_CASE("a replay config file may carry an hw object", "[hwconfig]") {

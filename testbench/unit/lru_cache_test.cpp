@@ -107,6 +107,9 @@ TEST_CASE("LRU cache matches an explicit LRU list on random streams", "[memory][
   check_against_lists<0>(3, 3);
   check_against_lists<0>(16, 1);
   check_against_lists<0>(4, 5);  // a set longer than a host line, not a whole number of them
+  check_against_lists<0>(5, 7);  // a number of sets that is not a power of two
+  check_against_lists<0>(1, 16);  // fully associative, as rtcore-systemc's 16-entry caches
+  check_against_lists<0>(1, 2048);  // fully associative beyond the former 1024-way cap
   check_against_lists<4>(8, 4);  // the forms the hierarchy compiles for the presets
   check_against_lists<8>(4, 8);
   check_against_lists<16>(2, 16);
