@@ -133,11 +133,12 @@ void Accelerator::set_tracing(VcdRecorder* vcd, TimelineRecorder* timeline) {
   timeline_ = timeline;
   for (RayTestCore& c : cores_)
     if (L1Cache* l1 = c.l1()) l1->set_tracing(vcd);
-  if (l2_) l2_->set_tracing(timeline);
+  if (l2_) l2_->set_tracing(timeline, vcd);
+  if (dram_) dram_->set_tracing(vcd);
 }
 
 EngineParts Accelerator::engine_parts() {
-  EngineParts p{config_, replayer_, bvh_, *source_, *dispatcher_, dynamic_cast<Dispatcher*>(dispatcher_), *sink_, {}, false, nullptr, false, nullptr, nullptr, {}, nullptr, {}};
+  EngineParts p{config_, replayer_, bvh_, *source_, *dispatcher_, dynamic_cast<Dispatcher*>(dispatcher_), *sink_, {}, false, nullptr, false, nullptr, nullptr, {}, nullptr, {}, {}, 0, EngineParts::kNoWarmup, EngineParts::kNoWarmup};
   bool all_l1 = true, all_ideal = ideal_ != nullptr;
   for (RayTestCore& c : cores_) {
     MemoryReadIf* mem = c.memory.operator->();
@@ -152,6 +153,15 @@ EngineParts Accelerator::engine_parts() {
   p.timeline = timeline_;
   p.vcd = vcd_;
   p.ray_times = ray_times_;
+  if (statistics_) {
+    const StatisticsOptions& o = statistics_->options();
+    p.on_sample = [this](uint64_t cycle, bool interval, bool warmup) {
+      statistics_->sample(statistics_sample(cycle, warmup), interval, warmup);
+    };
+    p.sample_interval = o.interval_path.empty() ? 0 : o.interval_cycles;
+    if (o.warmup_rays) p.warmup_rays = o.warmup_rays;
+    if (o.warmup_cycles) p.warmup_cycle = o.warmup_cycles;
+  }
   if (l2_ && (!at_ || !memory_l1s_.empty())) {
     // Arrivals first, then the L1s' misses that leave now (their L2 lookups),
     // then the L2's requests that leave now: as the approximately timed path
@@ -318,6 +328,45 @@ HwCounters Accelerator::chip_counters() const {
   return c;
 }
 
+StatsSample Accelerator::statistics_sample(uint64_t cycle, bool latencies) const {
+  StatsSample s;
+  s.cycle = cycle;
+  const SinkCounters& sink = sink_->counters();
+  s.rays = sink.rays;
+  s.latency_sum = sink.latency_sum;
+  if (latencies) s.latency_by_kind = sink.latency_by_kind;
+  for (const RayTestCore& core : cores_) {
+    const CoreCounters& k = core.counters;
+    const PipelineUnit* builtin[3] = {core.builtin_box(), core.builtin_triangle(), core.builtin_avoidance()};
+    for (int u = 0; u < 3; ++u) {
+      UnitCounters c;
+      add_unit(c, builtin[u], k.replaced_units[u]);
+      s.unit_ops[u] += c.ops;
+      s.unit_replaced[u] = s.unit_replaced[u] || c.replaced;
+    }
+    s.node_fetches += k.node_fetches;
+    s.leaf_fetches += k.leaf_fetches;
+    if (const L1Cache* l1 = core.l1()) {
+      const LevelCounters c = l1->counters();
+      s.l1.hits += c.hits;
+      s.l1.misses += c.misses;
+      s.l1.merges += c.merges;
+      s.l1.mshr_stall_cycles += c.mshr_stall_cycles;
+      s.l1_miss_service_cycles += l1->miss_service_cycles();
+      s.l1_misses_filled += l1->misses_filled();
+    }
+  }
+  if (l2_) {
+    s.caches = true;
+    s.l2 = l2_->counters();
+    s.l2_misses_filled = l2_->dram_reads_filled();
+    s.l2_miss_service_cycles = l2_->dram_read_cycles() + s.l2_misses_filled * config_.memory.l2.hit_latency;
+    s.dram_reads = l2_->dram_requests();
+    s.dram_bytes = dram_ ? dram_->channel().counters().bytes : s.dram_reads * config_.memory.l2.line_bytes;
+  }
+  return s;
+}
+
 nlohmann::json Accelerator::memory_stats() const {
   if (ideal_) {
     return {{"model", "ideal"}, {"latency", ideal_->latency()}, {"reads", ideal_->reads()}, {"bytes", ideal_->bytes()}};
@@ -395,6 +444,14 @@ nlohmann::json Accelerator::hw_json() {
   nlohmann::json j = hw_stats_json({c, config_, replayer_.stats(), mem, sc});
   j["emission"] = emission_json();
   j["instances"] = gather_instance_stats(*this);
+  // Exact latency percentiles and the miss latency per cache level, over the whole run.
+  const StatsSample end = statistics_sample(c.cycles + 1, true);
+  j["latency_distribution"] = latency_distribution_json(end.latency_by_kind);
+  j["miss_latency"] = RunStatistics::miss_latency_json(StatsSample{}, end);
+  if (statistics_ && statistics_->options().warmup()) {
+    j["warmup"] = statistics_->warmup_json();
+    j["measured"] = statistics_->measured_json();
+  }
   return j;
 }
 

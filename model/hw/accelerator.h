@@ -56,6 +56,7 @@
 #include "hw/ray_source.h"
 #include "hw/ray_test_core.h"
 #include "hw/result_sink.h"
+#include "hw/run_statistics.h"
 #include "hw/stat_provider.h"
 #include "replay/functional_replayer.h"
 #include "scene/bvh.h"
@@ -103,6 +104,11 @@ class Accelerator final : private AcceleratorChecks, public sc_core::sc_module, 
   void set_progress(std::function<void(const CycleEngine&)> progress) { progress_ = std::move(progress); }
   /// Records per-instance values (VCD) and busy intervals (timeline); either may be null.
   void set_tracing(VcdRecorder* vcd, TimelineRecorder* timeline);
+  /// Takes warm-up and interval samples for `statistics` (null: none; it outlives the run).
+  void set_statistics(RunStatistics* statistics) { statistics_ = statistics; }
+  /// The chip's cumulative counters now, as the sample of cycle `cycle`; with
+  /// the rays' latencies by kind when `latencies`.
+  StatsSample statistics_sample(uint64_t cycle, bool latencies) const;
 
   // ---- completion (a design with processes of its own, e.g. a free-running sc_clock) ----
   /// Notified once, immediately, when every ray of the feed has finished, at
@@ -189,6 +195,7 @@ class Accelerator final : private AcceleratorChecks, public sc_core::sc_module, 
   RayTimesSink ray_times_;
   VcdRecorder* vcd_ = nullptr;
   TimelineRecorder* timeline_ = nullptr;
+  RunStatistics* statistics_ = nullptr;
   const std::atomic<bool>* stop_ = nullptr;
   std::function<void(const CycleEngine&)> progress_;
   sc_core::sc_event kick_;

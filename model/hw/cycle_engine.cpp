@@ -53,7 +53,11 @@ class Engine final : public CycleEngine, private SourceHost {
       : cfg_(p.config), replayer_(p.replayer), bvh_(p.bvh), map_(p.bvh, p.config.address_base), source_(p.source),
         dispatcher_(p.dispatcher), builtin_dispatcher_(p.builtin_dispatcher), sink_(p.sink), cores_(p.cores), ideal_(p.builtin_ideal),
         avoidance_in_use_(p.avoidance_in_use), memory_clock_(p.memory_step ? p.memory_clock : &no_memory_work_),
-        memory_step_(p.memory_step), timeline_(p.timeline), vcd_(p.vcd) {
+        memory_step_(p.memory_step), timeline_(p.timeline), vcd_(p.vcd), on_sample_(p.on_sample),
+        sample_interval_(p.on_sample ? p.sample_interval : 0), warmup_cycle_(p.on_sample ? p.warmup_cycle : EngineParts::kNoWarmup),
+        warmup_rays_(p.on_sample && p.warmup_rays != 0 ? p.warmup_rays : EngineParts::kNoWarmup),
+        sampling_(p.on_sample && (p.sample_interval || p.warmup_cycle != EngineParts::kNoWarmup ||
+                                  p.warmup_rays != EngineParts::kNoWarmup)) {
     check_traversal_depth(p.bvh);
     ray_times_ = p.ray_times;
     events_.set_fence(memory_clock_->due_address());
@@ -67,14 +71,25 @@ class Engine final : public CycleEngine, private SourceHost {
       slots_.emplace_back(p.bvh, p.replayer.filter(), static_cast<int>(p.config.stack_depth),
                           i / p.config.slots_per_core);
     if (tracing_) set_up_tracing();
+    if (sampling_) {
+      if (p.warmup_rays == 0) warmup_cycle_ = 0;
+      next_sample_ = std::min(sample_interval_ ? sample_interval_ : EngineParts::kNoWarmup, warmup_cycle_);
+    }
   }
 
   void start() override { source_.start(*this, 0); }
 
   void advance(const uint64_t& limit) override {
+    if (__builtin_expect(sampling_, 0)) return advance_sampled(limit);
+    run_until([&limit] { return limit; });
+  }
+  /// Handles the events before `limit()` (read again after each: it may be lowered meanwhile).
+  template <class Limit>
+  __attribute__((always_inline)) void run_until(const Limit& limit_of) {
     uint64_t at;
     uint32_t id;
     while (!stopped_) {
+      const uint64_t limit = limit_of();
       // A memory step runs before the events of its cycle: the wheel opens no
       // cycle at or after it (its fence; the memory's work is always for a
       // later cycle than the one being handled).
@@ -91,6 +106,28 @@ class Engine final : public CycleEngine, private SourceHost {
       else if (id < resumed_id_) source_.on_event(id - source_id_, at);
       else continue_parked(id - resumed_id_, at);
     }
+  }
+  /// advance() stopping at each statistics sample's cycle to take it.
+  __attribute__((noinline)) void advance_sampled(const uint64_t& limit) {
+    for (;;) {
+      run_until([this, &limit] { return std::min(limit, next_sample_); });
+      if (stopped_ || next_sample_ > limit || complete()) return;
+      take_sample(next_sample_);
+    }
+  }
+  /// Every event before `cycle` is handled: the statistics sample of `cycle`.
+  void take_sample(uint64_t cycle) {
+    const bool interval = sample_interval_ && cycle > 0 && cycle % sample_interval_ == 0;
+    const bool warmup = cycle == warmup_cycle_;
+    on_sample_(cycle, interval, warmup);
+    if (warmup) warmup_cycle_ = EngineParts::kNoWarmup;
+    next_sample_ = sample_interval_ ? cycle - cycle % sample_interval_ + sample_interval_ : EngineParts::kNoWarmup;
+    next_sample_ = std::min(next_sample_, warmup_cycle_);
+  }
+  /// The warm-up by rays ends with this cycle's events (finish() of its last ray).
+  __attribute__((noinline, cold)) void warmup_rays_done(uint64_t now) {
+    warmup_cycle_ = now + 1;
+    next_sample_ = std::min(next_sample_, warmup_cycle_);
   }
   uint64_t last_handled() const override { return last_handled_; }
   bool finished() const override { return stopped_ || (events_.empty() && memory_clock_->due() == kPendingCycle); }
@@ -250,7 +287,7 @@ class Engine final : public CycleEngine, private SourceHost {
       for (int u = 0; u < kUnits; ++u) {
         t.unit_signal[u] = vcd_ ? vcd_->signal(units[u], kSignal) : VcdRecorder::kNoSignal;
         const std::string thread = units[u].substr(units[u].rfind('.') + 1);
-        t.unit_track[u] = timeline_ ? timeline_->track(core, thread) : TimelineRecorder::kNoTrack;
+        t.unit_track[u] = timeline_ ? timeline_->track(core, thread, units[u]) : TimelineRecorder::kNoTrack;
       }
       t.busy_signal = vcd_ ? vcd_->signal(core, "busy_slots") : VcdRecorder::kNoSignal;
       t.memory_track = timeline_ ? timeline_->track(core, "memory reads") : TimelineRecorder::kNoTrack;
@@ -263,7 +300,18 @@ class Engine final : public CycleEngine, private SourceHost {
     if (vcd_) {
       rays_done_signal_ = vcd_->signal("accelerator", "rays_done");
       in_flight_signal_ = vcd_->signal("accelerator", "rays_in_flight");
+      const std::string source = source_.name();
+      source_waiting_signal_ = vcd_->signal(source, "rays_waiting");
+      source_emitted_signal_ = vcd_->signal(source, "rays_emitted");
     }
+  }
+  /// A ray that entered the source's buffer at `entered`, was emitted (its
+  /// emission started) at `emitted` and left for a slot at `at`.
+  __attribute__((noinline, cold)) void trace_source(uint64_t entered, uint64_t emitted, uint64_t at) {
+    if (!vcd_) return;
+    vcd_->add(source_waiting_signal_, entered, +1);
+    vcd_->add(source_waiting_signal_, at, -1);
+    vcd_->add(source_emitted_signal_, emitted, +1);
   }
   /// Slot `id`'s step `name` over [start, end), whose read (if any) took [asked, ready).
   __attribute__((noinline, cold)) void trace_step(uint32_t id, const char* name, uint64_t start, uint64_t end,
@@ -337,6 +385,7 @@ class Engine final : public CycleEngine, private SourceHost {
     const UnitSchedule box = box_op(core, at, at);
     if (__builtin_expect(tracing_, 0)) {
       trace_occupancy(core_index, at, +1);
+      trace_source(ray.entered, ray.emitted, at);
       trace_step(id, "root box", box.issue, box.done, 0, 0);
       trace_op(id, kBox, box);
     }
@@ -463,6 +512,7 @@ class Engine final : public CycleEngine, private SourceHost {
     cc.spills += s.stepper.spills();
     --in_flight_;
     ++done_;
+    if (__builtin_expect(done_ == warmup_rays_, 0)) warmup_rays_done(now);
     core.core->free_slots.push_back(id);
     ++free_count_[s.core];
     if (__builtin_expect(tracing_, 0)) trace_occupancy(s.core, now, -1);
@@ -503,8 +553,14 @@ class Engine final : public CycleEngine, private SourceHost {
   VcdRecorder* vcd_;
   bool tracing_ = timeline_ || vcd_;
   std::vector<CoreTrace> core_trace_;
+  // Statistics samples (EngineParts::on_sample).
+  std::function<void(uint64_t, bool, bool)> on_sample_;
+  uint64_t sample_interval_ = 0, warmup_cycle_ = EngineParts::kNoWarmup, warmup_rays_ = EngineParts::kNoWarmup;
+  bool sampling_ = false;
+  uint64_t next_sample_ = EngineParts::kNoWarmup;  ///< the next sample's cycle
   std::vector<uint32_t> slot_track_;
   uint32_t rays_done_signal_ = VcdRecorder::kNoSignal, in_flight_signal_ = VcdRecorder::kNoSignal;
+  uint32_t source_waiting_signal_ = VcdRecorder::kNoSignal, source_emitted_signal_ = VcdRecorder::kNoSignal;
 };
 
 template <class Tester, class Memory>

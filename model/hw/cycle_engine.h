@@ -103,6 +103,16 @@ struct EngineParts {
   /// every cycle c the clock was asked for, before the events of cycle c.
   MemoryClock* memory_clock = nullptr;
   std::function<void(uint64_t)> memory_step;
+  /// Statistics samples (null: none): `on_sample(c, interval, warmup)` runs
+  /// once every event before cycle c is handled and none of cycle c is: at
+  /// every multiple c > 0 of `sample_interval` (0: none) with interval = true,
+  /// and once at the warm-up's end with warmup = true, the cycle
+  /// `warmup_cycle` or, with `warmup_rays` set, the cycle after the one the
+  /// warmup_rays-th ray finished (0 rays: cycle 0). kNoWarmup: none.
+  static constexpr uint64_t kNoWarmup = ~uint64_t{0};
+  std::function<void(uint64_t cycle, bool interval, bool warmup)> on_sample;
+  uint64_t sample_interval = 0;
+  uint64_t warmup_cycle = kNoWarmup, warmup_rays = kNoWarmup;
 };
 
 /// The scheduler for `parts` (which outlive it). Throws std::runtime_error when

@@ -13,6 +13,21 @@
 
 namespace vbsim::hw {
 
+namespace {
+
+/// The hierarchical names of `root` and every object below it.
+std::vector<std::string> instance_names(const sc_core::sc_object& root) {
+  std::vector<std::string> out{root.name()};
+  for (size_t i = 0; i < out.size(); ++i) {
+    const sc_core::sc_object* o = sc_core::sc_find_object(out[i].c_str());
+    if (!o) continue;
+    for (const sc_core::sc_object* child : o->get_child_objects()) out.push_back(child->name());
+  }
+  return out;
+}
+
+}  // namespace
+
 CycleRunResult run_cycle_replay(const RayFeed& feed, const Scene& scene, const Bvh& bvh, const ReplayOptions& opt,
                                 const HwConfig& cfg, const RayResultSink& sink, const CycleRunOptions& options) {
   const SimulationContext context;
@@ -20,11 +35,31 @@ CycleRunResult run_cycle_replay(const RayFeed& feed, const Scene& scene, const B
   auto acc = std::make_unique<Accelerator>("accelerator", cfg, scene, bvh, opt, options.units);
   std::optional<VcdRecorder> vcd;
   std::optional<TimelineRecorder> timeline;
-  if (!options.vcd.path.empty())
+  // A scope must name an instance of the design (TraceScopeError otherwise).
+  const std::vector<std::string> instances = instance_names(*acc);
+  if (!options.vcd.path.empty()) {
+    const TraceScope scope(options.vcd.scope);
+    scope.check(instances);
     vcd.emplace(options.vcd.first, options.vcd.cycles,
-                static_cast<uint64_t>(CycleClock(cfg.clock_mhz).period().value()), options.vcd.scope);
-  if (!options.timeline.path.empty()) timeline.emplace(options.timeline.first, options.timeline.cycles, options.timeline.scope);
+                static_cast<uint64_t>(CycleClock(cfg.clock_mhz).period().value()), scope);
+  }
+  if (!options.timeline.path.empty()) {
+    const TraceScope scope(options.timeline.scope);
+    scope.check(instances);
+    timeline.emplace(options.timeline.path, options.timeline.first, options.timeline.cycles, scope);
+  }
   acc->set_tracing(vcd ? &*vcd : nullptr, timeline ? &*timeline : nullptr);
+  // Warm-up and interval statistics (hw.sim.warmup_*, options.interval_stats).
+  StatisticsOptions statistics_options;
+  statistics_options.interval_path = options.interval_stats;
+  statistics_options.interval_cycles = cfg.interval_cycles;
+  statistics_options.warmup_rays = cfg.warmup_rays;
+  statistics_options.warmup_cycles = cfg.warmup_cycles;
+  std::optional<RunStatistics> statistics;
+  if (statistics_options.warmup() || !statistics_options.interval_path.empty()) {
+    statistics.emplace(acc->config(), statistics_options);
+    acc->set_statistics(&*statistics);
+  }
   uint64_t fed = 0;  // rays in, for the conservation check
   acc->set_feed([&feed, &fed](TraceRay& tr) {
     const bool got = feed(tr);
@@ -51,6 +86,7 @@ CycleRunResult run_cycle_replay(const RayFeed& feed, const Scene& scene, const B
   else if (done > fed) check_ray_conservation("stopped cycle-level replay", fed, done);
   r.stats.rays_dropped = r.stats.partial ? fed - done : 0;
   r.counters = acc->chip_counters();
+  if (statistics && !r.stats.partial) statistics->finish(acc->statistics_sample(r.counters.cycles + 1, true));
   r.hw = acc->hw_json();
   r.table = acc->hw_table();
   // Energy and area, from the counters the run kept (nothing per cycle).
@@ -58,8 +94,8 @@ CycleRunResult run_cycle_replay(const RayFeed& feed, const Scene& scene, const B
   r.hw["energy"] = hw_energy_json(tech, acc->config(), opt, r.stats, r.counters, r.hw["memory"]["port"]);
   r.hw["area"] = hw_area_json(tech, hw_area(tech, acc->config(), opt));
   r.table += hw_energy_lines(r.hw["energy"], r.hw["area"]);
-  if (vcd) vcd->write(options.vcd.path);
-  if (timeline) timeline->write(options.timeline.path);
+  if (vcd) vcd->write(options.vcd.path, r.counters.cycles);
+  if (timeline) timeline->finish();
   return r;
 }
 

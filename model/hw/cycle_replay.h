@@ -28,7 +28,7 @@ struct TraceWindow {
   std::string path;         ///< output file (empty: none)
   uint64_t first = 0;       ///< first cycle
   uint64_t cycles = 2000;   ///< cycles in the window
-  std::string scope;        ///< hierarchical name prefix of the instances kept (empty: all)
+  std::string scope;        ///< the instances kept, a TraceScope (hw/trace_scope.h; empty: all)
 };
 
 struct CycleRunOptions {
@@ -37,6 +37,9 @@ struct CycleRunOptions {
   std::function<void(const CycleEngine&)> progress;
   TraceWindow vcd;        ///< per-instance values at cycle resolution (VCD)
   TraceWindow timeline;   ///< busy intervals by instance (Chrome trace-event JSON)
+  /// Interval statistics: one JSON line per hw.sim.interval_cycles cycles
+  /// written here (empty: none; hw/run_statistics.h).
+  std::string interval_stats;
   bool track_parents = true;  ///< keep parent rays (FunctionalReplayer::set_track_parents)
   RayLocator locator;         ///< names a ray's line in errors the model finds (may be empty)
   RayTimesSink ray_times;     ///< every finished ray's cycles (may be empty)
@@ -54,8 +57,9 @@ struct CycleRunResult {
 
 /// Replays the rays `feed` gives on `scene`/`bvh`. Throws std::invalid_argument
 /// naming the field for a configuration the model cannot build, before any ray
-/// is read; std::runtime_error when the run stops making progress (a report of
-/// the stuck slots) or loses a ray.
+/// is read, TraceScopeError (an std::invalid_argument) for a trace scope that
+/// names no instance; std::runtime_error when the run stops making progress (a
+/// report of the stuck slots) or loses a ray.
 CycleRunResult run_cycle_replay(const RayFeed& feed, const Scene& scene, const Bvh& bvh, const ReplayOptions& opt,
                                 const HwConfig& cfg, const RayResultSink& sink, const CycleRunOptions& options);
 

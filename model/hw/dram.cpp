@@ -29,8 +29,20 @@ nlohmann::json Dram::parameters() const {
           {"line_bytes", config_.l2.line_bytes}};
 }
 
+void Dram::set_tracing(VcdRecorder* vcd) {
+  vcd_requests_ = vcd ? vcd->signal(name(), "requests_in_flight") : VcdRecorder::kNoSignal;
+  vcd_bytes_ = vcd ? vcd->signal(name(), "bytes") : VcdRecorder::kNoSignal;
+  vcd_ = vcd_requests_ == VcdRecorder::kNoSignal ? nullptr : vcd;
+}
+
 uint64_t Dram::serve(tlm::tlm_generic_payload& trans, const sc_core::sc_time& delay) {
-  const uint64_t ready = channel_.read_line(clock_.cycle_after(delay));
+  const uint64_t arrival = clock_.cycle_after(delay);
+  const uint64_t ready = channel_.read_line(arrival);
+  if (vcd_) {
+    vcd_->add(vcd_requests_, arrival, +1);
+    vcd_->add(vcd_requests_, ready, -1);
+    vcd_->add(vcd_bytes_, ready, config_.l2.line_bytes);
+  }
   trans.set_response_status(trans.get_command() == tlm::TLM_READ_COMMAND ? tlm::TLM_OK_RESPONSE
                                                                           : tlm::TLM_COMMAND_ERROR_RESPONSE);
   return ready;

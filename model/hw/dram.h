@@ -20,6 +20,7 @@
 #include "hw/dram_channel.h"
 #include "hw/memory_config.h"
 #include "hw/stat_provider.h"
+#include "hw/vcd_recorder.h"
 
 namespace vbsim::hw {
 
@@ -39,6 +40,8 @@ class Dram final : public sc_core::sc_module, public tlm::tlm_fw_transport_if<>,
   const char* unit_kind() const override { return "Dram"; }
   nlohmann::json parameters() const override;
   const DramChannel& channel() const { return channel_; }
+  /// Records its requests in flight and the bytes it has delivered (VCD; null: none).
+  void set_tracing(VcdRecorder* vcd);
 
  private:
   /// The cycle the data of a request arriving `delay` after SystemC time are there.
@@ -49,6 +52,8 @@ class Dram final : public sc_core::sc_module, public tlm::tlm_fw_transport_if<>,
   const CycleClock& clock_;
   DramChannel channel_;
   tlm_utils::peq_with_get<tlm::tlm_generic_payload> responses_;
+  VcdRecorder* vcd_ = nullptr;
+  uint32_t vcd_requests_ = VcdRecorder::kNoSignal, vcd_bytes_ = VcdRecorder::kNoSignal;
 };
 
 }  // namespace vbsim::hw

@@ -195,6 +195,12 @@ void apply_hw_config(const nlohmann::json& j, const std::string& file, HwConfig&
     fs.integer("quantum_cycles", cfg.quantum_cycles, 1, 1u << 30);
     fs.integer("latency_bucket_cycles", cfg.latency_bucket_cycles, 1, 1u << 20);
     fs.integer("latency_buckets", cfg.latency_buckets, 1, 4096);
+    fs.integer("warmup_rays", cfg.warmup_rays, uint64_t{0}, uint64_t{1} << 48);
+    fs.integer("warmup_cycles", cfg.warmup_cycles, uint64_t{0}, uint64_t{1} << 48);
+    fs.integer("interval_cycles", cfg.interval_cycles, uint64_t{1}, uint64_t{1} << 48);
+    if (cfg.warmup_rays && cfg.warmup_cycles)
+      throw ConfigError(file + ": field 'hw.sim.warmup_cycles': a warm-up by rays (hw.sim.warmup_rays) and by cycles "
+                        "at once: set one of them");
   }
 }
 
@@ -275,7 +281,10 @@ nlohmann::json hw_config_json(const HwConfig& c) {
           {"sim",
            {{"quantum_cycles", c.quantum_cycles},
             {"latency_bucket_cycles", c.latency_bucket_cycles},
-            {"latency_buckets", c.latency_buckets}}}};
+            {"latency_buckets", c.latency_buckets},
+            {"warmup_rays", c.warmup_rays},
+            {"warmup_cycles", c.warmup_cycles},
+            {"interval_cycles", c.interval_cycles}}}};
 }
 
 }  // namespace vbsim::hw

@@ -81,6 +81,10 @@ struct HwConfig {
   uint32_t quantum_cycles = 256;        ///< sim: most cycles the engine runs ahead of SystemC time
   uint32_t latency_bucket_cycles = 32;  ///< sim: width of a latency histogram bucket
   uint32_t latency_buckets = 64;        ///< sim: buckets (the last one also counts longer latencies)
+  /// sim: the statistics in `hw.measured` start after the warm-up: once this
+  /// many rays have finished, or at this cycle (at most one non-zero; 0: none).
+  uint64_t warmup_rays = 0, warmup_cycles = 0;
+  uint64_t interval_cycles = 1000;  ///< sim: cycles per row of the interval statistics (--interval-stats)
 };
 
 /// Names of the committed presets.

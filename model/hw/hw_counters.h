@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "datapath/ray.h"
+#include "hw/latency_distribution.h"
 
 namespace vbsim::hw {
 
@@ -59,6 +60,7 @@ struct SinkCounters {
   uint64_t latency_sum = 0;  ///< sum of dispatch-to-result latencies
   uint64_t latency_min = 0, latency_max = 0;
   std::vector<uint64_t> latency_histogram;  ///< rays per latency bucket (the last one open-ended)
+  std::array<LatencyDistribution, kRayKindCount> latency_by_kind;  ///< exact latencies by ray kind
 };
 
 /// The chip-wide totals of one run, summed from the modules' counters.

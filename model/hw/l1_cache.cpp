@@ -70,6 +70,8 @@ __attribute__((always_inline)) inline uint64_t L1Cache::read_line(uint64_t line,
   if (__builtin_expect(clock_ != nullptr, 0) && a.start != now) return defer_until(line, slot, now, a.start);
   const uint64_t fill = next_level<L2Ways>(line, a.start + level_.hit_latency());
   level_.fill<L1Ways>(line, fill, a.start);
+  miss_sent(a.start);
+  if (fill != kPendingCycle) miss_filled(fill);
   if (__builtin_expect(vcd_ != nullptr, 0)) trace_miss(a.start, fill);
   if (__builtin_expect(fill == kPendingCycle, 0)) wait_for(line, slot, now);
   return fill;
@@ -134,6 +136,7 @@ void L1Cache::send_due(uint64_t now) {
     std::pop_heap(timed_.begin(), timed_.end(), std::greater<>());
     timed_.pop_back();
     if (vcd_) vcd_->add(vcd_misses_, m.cycle, +1);
+    miss_sent(m.cycle);
     const uint64_t t = m.cycle + level_.hit_latency();
     const uint64_t fill = l2_ ? l2_->read_line_inline<0>(m.line, t, core_) : next->read_line(m.line, t, core_);
     if (fill != kPendingCycle) line_filled(m.line, fill);  // answers its waiters (and sends deferred misses)
@@ -157,6 +160,7 @@ void L1Cache::answer(uint32_t slot, uint64_t ready) {
 
 void L1Cache::line_filled(uint64_t line, uint64_t fill) {
   level_.resolve(line, fill);
+  miss_filled(fill);
   if (vcd_) vcd_->add(vcd_misses_, fill, -1);  // the miss's +1 went in when it was sent
   waiting_.fill(line, fill, level_, [this](uint32_t slot, uint64_t ready) { answer(slot, ready); });
   send_deferred();
@@ -176,6 +180,7 @@ void L1Cache::send_deferred() {
       continue;
     }
     if (vcd_) vcd_->add(vcd_misses_, start, +1);
+    miss_sent(start);
     const uint64_t fill = l2_ ? l2_->read_line_inline<0>(d.line, start + level_.hit_latency(), core_)
                               : next->read_line(d.line, start + level_.hit_latency(), core_);
     if (fill != kPendingCycle) line_filled(d.line, fill);  // answers its waiters (and sends further deferred misses)

@@ -85,6 +85,12 @@ class L1Cache final : public sc_core::sc_module, public MemoryReadIf, public Lin
   /// The cycle of the first read and the latest ready cycle of any read (0 without reads).
   uint64_t first_read_cycle() const { return first_now_; }
   uint64_t last_ready_cycle() const { return last_ready_; }
+  /// Summed over its misses whose data have come: cycles from the miss's
+  /// leaving for the L2 to its data (the miss latency less any MSHR wait; the
+  /// L1's lookup included, as the L2 is asked a hit latency after the miss left).
+  uint64_t miss_service_cycles() const { return miss_fill_sum_ - miss_start_sum_; }
+  /// Its misses whose data have come.
+  uint64_t misses_filled() const { return misses_filled_; }
   /// Its misses in flight are recorded (VCD).
   void set_tracing(VcdRecorder* vcd);
 
@@ -109,6 +115,14 @@ class L1Cache final : public sc_core::sc_module, public MemoryReadIf, public Lin
   void answer(uint32_t slot, uint64_t ready);
   void send_deferred();
   void trace_miss(uint64_t start, uint64_t fill);
+  // Miss latency: each miss's leaving cycle and fill cycle summed (a miss's
+  // fill may come later than its leaving is known).
+  void miss_sent(uint64_t start) { miss_start_sum_ += start; }
+  void miss_filled(uint64_t fill) {
+    miss_fill_sum_ += fill;
+    ++misses_filled_;
+  }
+  uint64_t miss_start_sum_ = 0, miss_fill_sum_ = 0, misses_filled_ = 0;
 
   CacheLevel level_;
   CacheConfig config_;

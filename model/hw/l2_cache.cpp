@@ -43,9 +43,11 @@ nlohmann::json L2Cache::parameters() const {
           {"at_lookahead_cycles", lookahead_}};
 }
 
-void L2Cache::set_tracing(TimelineRecorder* timeline) {
-  timeline_ = timeline;
+void L2Cache::set_tracing(TimelineRecorder* timeline, VcdRecorder* vcd) {
   track_ = timeline ? timeline->track(name(), "dram requests") : TimelineRecorder::kNoTrack;
+  timeline_ = track_ == TimelineRecorder::kNoTrack ? nullptr : timeline;
+  vcd_misses_ = vcd ? vcd->signal(name(), "misses_in_flight") : VcdRecorder::kNoSignal;
+  vcd_ = vcd_misses_ == VcdRecorder::kNoSignal ? nullptr : vcd;
 }
 
 void L2Cache::prepare(tlm::tlm_generic_payload& trans, uint64_t line) const {
@@ -89,7 +91,7 @@ uint64_t L2Cache::transport_lt(uint64_t line, uint64_t send) {
     throw std::runtime_error(fmt::format("{}: the memory target answered the read of 0x{:x} with {}", name(),
                                          line << line_shift_, lt_payload_.get_response_string()));
   const uint64_t ready = std::max(clock_.cycle_after(delay), send + 1);  // a line takes at least a cycle
-  if (timeline_) timeline_->add(track_, "dram read", send, ready, -1);
+  dram_read_done(send, ready);
   return ready;
 }
 
@@ -180,7 +182,7 @@ void L2Cache::arrived(tlm::tlm_generic_payload& trans, const sc_core::sc_time& d
   }
   const uint64_t line = trans.get_address() >> line_shift_;
   responses_.push({cycle, order_++, line});
-  if (timeline_) timeline_->add(track_, "dram read", sent, cycle, -1);
+  dram_read_done(sent, cycle);
   trans.release();
   if (on_response_) on_response_();
 }

@@ -51,6 +51,7 @@
 #include "hw/stat_provider.h"
 #include "hw/timeline_recorder.h"
 #include "hw/unit_interfaces.h"
+#include "hw/vcd_recorder.h"
 
 namespace vbsim::hw {
 
@@ -120,7 +121,13 @@ class L2Cache final : public sc_core::sc_module,
   nlohmann::json parameters() const override;
   LevelCounters counters() const { return level_.counters(); }
   uint64_t dram_requests() const { return dram_requests_; }
-  void set_tracing(TimelineRecorder* timeline);
+  /// Records its DRAM reads (timeline) and misses in flight (VCD); either may be null.
+  void set_tracing(TimelineRecorder* timeline, VcdRecorder* vcd = nullptr);
+  /// Summed over its DRAM reads whose data have come: cycles from the read's
+  /// sending to its data (the miss latency less the lookup and any MSHR wait).
+  uint64_t dram_read_cycles() const { return dram_fill_sum_ - dram_send_sum_; }
+  /// DRAM reads whose data have come.
+  uint64_t dram_reads_filled() const { return dram_reads_filled_; }
 
   // tlm_bw_transport_if, tlm_mm_interface
   tlm::tlm_sync_enum nb_transport_bw(tlm::tlm_generic_payload& trans, tlm::tlm_phase& phase,
@@ -173,6 +180,20 @@ class L2Cache final : public sc_core::sc_module,
   std::function<void()> on_response_;
   std::function<void(uint64_t)> on_request_;
   MemoryClock* memory_clock_ = nullptr;
+  /// A DRAM read sent at `send` has its data at `fill` (miss latency, tracing).
+  void dram_read_done(uint64_t send, uint64_t fill) {
+    dram_send_sum_ += send;
+    dram_fill_sum_ += fill;
+    ++dram_reads_filled_;
+    if (timeline_) timeline_->add(track_, "dram read", send, fill, -1);
+    if (vcd_) {
+      vcd_->add(vcd_misses_, send, +1);
+      vcd_->add(vcd_misses_, fill, -1);
+    }
+  }
+  uint64_t dram_send_sum_ = 0, dram_fill_sum_ = 0, dram_reads_filled_ = 0;
+  VcdRecorder* vcd_ = nullptr;
+  uint32_t vcd_misses_ = VcdRecorder::kNoSignal;
   TimelineRecorder* timeline_ = nullptr;
   uint32_t track_ = TimelineRecorder::kNoTrack;
   std::string target_name_ = "the memory target";

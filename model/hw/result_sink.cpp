@@ -34,6 +34,7 @@ void ResultSink::ray_done(const TraceRay& tr, const EmittedRay& er, const Hit& h
   c.latency_max = std::max(c.latency_max, latency);
   const uint64_t bucket = std::min<uint64_t>(latency / bucket_cycles_, c.latency_histogram.size() - 1);
   ++c.latency_histogram[bucket];
+  c.latency_by_kind[static_cast<int>(tr.kind)].add(latency);
   ++c.rays;
   c.last_cycle = now;
 }

@@ -43,21 +43,23 @@ std::vector<std::string> scopes_of(const std::string& instance) {
 
 }  // namespace
 
-VcdRecorder::VcdRecorder(uint64_t first, uint64_t cycles, uint64_t period_ps, std::string scope)
-    : first_(first), end_(first + cycles), period_ps_(period_ps), scope_(std::move(scope)) {}
+VcdRecorder::VcdRecorder(uint64_t first, uint64_t cycles, uint64_t period_ps, TraceScope scope)
+    : first_(first), end_(first + cycles < first ? ~uint64_t{0} : first + cycles), period_ps_(period_ps),
+      scope_(std::move(scope)) {}
 
 uint32_t VcdRecorder::signal(const std::string& instance, const std::string& name) {
-  if (!scope_.empty() && instance.compare(0, scope_.size(), scope_) != 0) return kNoSignal;
+  if (!scope_.matches(instance)) return kNoSignal;
   instances_.push_back(instance);
   names_.push_back(name);
   base_.push_back(0);
   return static_cast<uint32_t>(names_.size() - 1);
 }
 
-void VcdRecorder::write(const std::string& path) const {
+void VcdRecorder::write(const std::string& path, uint64_t run_end) const {
   AtomicOutputFile file(path);  // named only once complete; throws OutputError naming the path
   std::ostream& out = file.stream();
-  out << "$comment vbsim cycle-level model, cycles " << first_ << " to " << end_ << " $end\n";
+  const uint64_t end = std::max(first_, std::min(end_, run_end + 1));  // [first, end): the run's last cycle included
+  out << "$comment vbsim cycle-level model, cycles " << first_ << " to " << end << " $end\n";
   out << "$timescale 1 ps $end\n";
   // Signals grouped by instance, scopes nested by the dotted name.
   std::map<std::string, std::vector<uint32_t>> by_instance;
@@ -91,6 +93,7 @@ void VcdRecorder::write(const std::string& path) const {
   std::stable_sort(changes.begin(), changes.end(), [](const Change& a, const Change& b) { return a.cycle < b.cycle; });
   for (size_t k = 0; k < changes.size();) {
     const uint64_t cycle = changes[k].cycle;
+    if (cycle >= end) break;
     std::map<uint32_t, int64_t> touched;
     for (; k < changes.size() && changes[k].cycle == cycle; ++k) {
       touched.emplace(changes[k].id, level[changes[k].id]);
@@ -103,7 +106,7 @@ void VcdRecorder::write(const std::string& path) const {
     for (const auto& [id, old] : touched)
       if (level[id] != old) out << "b" << binary(level[id]) << " " << vcd_id(id) << "\n";
   }
-  out << "#" << end_ * period_ps_ << "\n";
+  out << "#" << end * period_ps_ << "\n";
   file.commit();
 }
 

@@ -7,11 +7,14 @@
 // changes (+k at the cycle it takes effect), in any order of cycles; write()
 // sorts them. Changes before the window form each value's starting level; those
 // after the window are dropped. Signals are named by hierarchical instance name;
-// a scope prefix keeps only the instances below it ("accelerator.core_3").
+// a TraceScope keeps only the instances it names ("accelerator.core_3"). The
+// file ends at the window's end or the run's, whichever comes first.
 #pragma once
 #include <cstdint>
 #include <string>
 #include <vector>
+
+#include "hw/trace_scope.h"
 
 namespace vbsim::hw {
 
@@ -20,8 +23,8 @@ class VcdRecorder {
   static constexpr uint32_t kNoSignal = ~uint32_t{0};
 
   /// Records [first, first + cycles); `period_ps` is one cycle in the file's
-  /// 1 ps time unit; `scope` (may be empty) a prefix of the instance names kept.
-  VcdRecorder(uint64_t first, uint64_t cycles, uint64_t period_ps, std::string scope);
+  /// 1 ps time unit; `scope` the instances kept (empty: all).
+  VcdRecorder(uint64_t first, uint64_t cycles, uint64_t period_ps, TraceScope scope);
 
   /// A signal `name` of instance `instance`: its id, or kNoSignal when the
   /// instance is outside the scope (add() then does nothing).
@@ -32,8 +35,9 @@ class VcdRecorder {
     if (cycle < first_) base_[id] += delta;
     else changes_.push_back({cycle, id, delta});
   }
-  /// Writes the VCD; throws std::runtime_error when the file cannot be written.
-  void write(const std::string& path) const;
+  /// Writes the VCD, ending after cycle `run_end` (the run's last) when that
+  /// comes before the window's end; throws OutputError when the file cannot be written.
+  void write(const std::string& path, uint64_t run_end) const;
   size_t signals() const { return names_.size(); }
 
  private:
@@ -43,7 +47,7 @@ class VcdRecorder {
     int64_t delta;
   };
   uint64_t first_, end_, period_ps_;
-  std::string scope_;
+  TraceScope scope_;
   std::vector<std::string> instances_, names_;
   std::vector<int64_t> base_;
   std::vector<Change> changes_;

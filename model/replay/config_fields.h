@@ -65,6 +65,11 @@ class Fields {
   void integer(const std::string& key, uint32_t& out, uint32_t lo, uint32_t hi) {
     if (const auto* v = get(key)) out = static_cast<uint32_t>(integer_in(*v, key, lo, hi));
   }
+  /// An integer in [lo, hi] (hi < 2^63).
+  void integer(const std::string& key, uint64_t& out, uint64_t lo, uint64_t hi) {
+    if (const auto* v = get(key))
+      out = static_cast<uint64_t>(integer_in(*v, key, static_cast<int64_t>(lo), static_cast<int64_t>(hi)));
+  }
   void boolean(const std::string& key, bool& out) {
     if (const auto* v = get(key)) {
       if (!v->is_boolean()) fail(file_, path(key), "must be true or false");

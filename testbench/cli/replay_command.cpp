@@ -7,9 +7,11 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <optional>
 
 #include "hw/cycle_replay.h"
 #include "hw/host_memory_estimate.h"
+#include "hw/trace_scope.h"
 #include "hw/trace_order_buffer.h"
 #include "io/atomic_output_file.h"
 #include "io/output_paths.h"
@@ -60,7 +62,8 @@ struct ReplayArgs {
   std::string hits;
   std::string mode = "functional";
   std::string preset;  // cycle mode: hardware preset (default: the config's, else small)
-  std::string vcd, timeline, trace_scope, deps, missing_parents, ray_log;
+  std::string vcd, timeline, trace_scope, deps, missing_parents, ray_log, interval_stats;
+  std::optional<uint64_t> interval, warmup_rays, warmup_cycles;  // cycle mode: override hw.sim's
   uint64_t timeline_start = 0, timeline_cycles = 2000, vcd_start = 0, vcd_cycles = 2000;
   bool timeline_window_given = false;  // --timeline-start or --timeline-cycles on the command line
   bool vcd_window_given = false;       // --vcd-start or --vcd-cycles on the command line
@@ -86,6 +89,9 @@ ReplayStats run_cycle_mode(const ReplayArgs& a, const ReplayOptions& opt, const 
                uint64_t{cfg.cores} * cfg.slots_per_core, cfg.cores, cfg.slots_per_core,
                hw::slot_host_bytes(cfg) >> 20);
   if (!a.deps.empty()) cfg.source.dependencies = a.deps == "on";
+  if (a.interval) cfg.interval_cycles = *a.interval;
+  if (a.warmup_rays) cfg.warmup_rays = *a.warmup_rays, cfg.warmup_cycles = 0;
+  if (a.warmup_cycles) cfg.warmup_cycles = *a.warmup_cycles, cfg.warmup_rays = 0;
   if (!a.missing_parents.empty())
     cfg.source.missing_parents =
         a.missing_parents == "independent" ? hw::MissingParents::Independent : hw::MissingParents::Error;
@@ -97,6 +103,7 @@ ReplayStats run_cycle_mode(const ReplayArgs& a, const ReplayOptions& opt, const 
   if (meter.shown()) run.progress = [&meter](const hw::CycleEngine& e) { meter.update(e.rays_done()); };
   run.vcd = {a.vcd, a.vcd_start, a.vcd_cycles, a.trace_scope};
   run.timeline = {a.timeline, a.timeline_start, a.timeline_cycles, a.trace_scope};
+  run.interval_stats = a.interval_stats;
   // Rays finish out of order; the hits file lists them in trace order, as the functional replay does.
   std::unique_ptr<hw::TraceOrderBuffer> ordered;
   if (hits) ordered = std::make_unique<hw::TraceOrderBuffer>(*hits);
@@ -140,10 +147,16 @@ void check_mode_options(const ReplayArgs& a) {
     throw UsageError(fmt::format("option '--mode': '{}' is not available; modes: functional, cycle", a.mode));
   if (a.mode != "cycle" && (!a.preset.empty() || !a.vcd.empty() || !a.timeline.empty() || a.timeline_window_given ||
                             a.vcd_window_given || !a.deps.empty() || !a.missing_parents.empty() || !a.ray_log.empty() ||
-                            !a.trace_scope.empty()))
+                            !a.trace_scope.empty() || !a.interval_stats.empty() || a.interval || a.warmup_rays ||
+                            a.warmup_cycles))
     throw UsageError(
         "options '--preset', '--vcd', '--vcd-start', '--vcd-cycles', '--timeline', '--timeline-start', "
-        "'--timeline-cycles', '--trace-scope', '--deps', '--missing-parents' and '--ray-log' need '--mode cycle'");
+        "'--timeline-cycles', '--trace-scope', '--deps', '--missing-parents', '--ray-log', '--interval-stats', "
+        "'--interval', '--warmup-rays' and '--warmup-cycles' need '--mode cycle'");
+  if (a.interval && a.interval_stats.empty()) throw UsageError("option '--interval' needs '--interval-stats FILE'");
+  if (a.interval && *a.interval == 0) throw UsageError("option '--interval': must be > 0");
+  if (a.warmup_rays && a.warmup_cycles)
+    throw UsageError("options '--warmup-rays' and '--warmup-cycles': give at most one");
   if (a.timeline_window_given && a.timeline.empty())
     throw UsageError("options '--timeline-start' and '--timeline-cycles' need '--timeline FILE'");
   if (a.vcd_window_given && a.vcd.empty())
@@ -169,7 +182,8 @@ int run_replay_command(const ReplayArgs& a) {
                       {"option '--hits'", a.hits},
                       {"option '--timeline'", a.timeline},
                       {"option '--vcd'", a.vcd},
-                      {"option '--ray-log'", a.ray_log}});
+                      {"option '--ray-log'", a.ray_log},
+                      {"option '--interval-stats'", a.interval_stats}});
   std::unique_ptr<AtomicOutputFile> stats_file, hits_file;
   if (!a.stats.empty()) stats_file = std::make_unique<AtomicOutputFile>(a.stats);
   if (!a.hits.empty()) hits_file = std::make_unique<AtomicOutputFile>(a.hits);
@@ -201,6 +215,8 @@ int run_replay_command(const ReplayArgs& a) {
   } catch (const OutputError& e) {
     if (e.path == "hits output") throw OutputError(a.hits, e.message);
     throw;
+  } catch (const hw::TraceScopeError& e) {
+    throw UsageError(fmt::format("option '--trace-scope': {}", e.what()));
   }
   meter.finish();
   if (hits_file) {  // a stopped run's hits end with a line that says so
@@ -260,8 +276,9 @@ void add_replay_command(CLI::App& app) {
   CLI::Option* vcd_cycles =
       cmd->add_option("--vcd-cycles", args->vcd_cycles, "cycle mode: cycles in the VCD window")->capture_default_str();
   cmd->add_option("--trace-scope", args->trace_scope,
-                  "cycle mode: record only the instances whose hierarchical name starts with this "
-                  "(e.g. accelerator.core_3) in the VCD and the timeline");
+                  "cycle mode: record only these instances and what is below them in the VCD and the timeline: "
+                  "hierarchical names, comma-separated, '*' for any characters within one level (e.g. "
+                  "accelerator.core_3 or accelerator.core_*,accelerator.l2); one that names no instance is an error");
   cmd->add_option("--timeline", args->timeline, "cycle mode: write a Chrome trace-event JSON of a cycle window here");
   CLI::Option* start = cmd->add_option("--timeline-start", args->timeline_start,
                                        "cycle mode: first cycle of the timeline window")->capture_default_str();
@@ -279,6 +296,16 @@ void add_replay_command(CLI::App& app) {
   cmd->add_option("--ray-log", args->ray_log,
                   "cycle mode: write one JSON line per ray here, in trace order: id, parent, enter (the source's "
                   "buffer), ready, emit, start and finish cycles, core, slot");
+  cmd->add_option("--interval-stats", args->interval_stats,
+                  "cycle mode: write interval statistics here, one JSON line per interval of --interval cycles: rays "
+                  "finished, rays/cycle, cache hits and misses per level, DRAM bytes, unit busy fractions");
+  cmd->add_option("--interval", args->interval,
+                  "cycle mode: cycles per interval of --interval-stats [the config's hw.sim.interval_cycles, else 1000]");
+  cmd->add_option("--warmup-rays", args->warmup_rays,
+                  "cycle mode: hw.measured counts from the cycle after the N-th ray finished on "
+                  "[the config's hw.sim.warmup_rays, else none]");
+  cmd->add_option("--warmup-cycles", args->warmup_cycles,
+                  "cycle mode: hw.measured counts from cycle C on [the config's hw.sim.warmup_cycles, else none]");
   cmd->add_option("--stats", args->stats, "write the statistics JSON here");
   cmd->add_option("--hits", args->hits, "write one JSON line per ray here (after a provenance line)");
   cmd->add_flag("--quiet,-q", args->quiet, "print nothing on success (no progress, no SystemC info messages)");

@@ -11,12 +11,14 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <set>
 #include <sstream>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "hw/cycle_replay.h"
+#include "hw/trace_scope.h"
 #include "../unit/three_floors.h"
 
 using namespace vbsim;
@@ -146,6 +148,75 @@ TEST_CASE("the timeline names processes and threads by instance and shows unit a
     }
   CHECK(core1);
   CHECK_FALSE(other);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("a trace scope names one instance exactly, not those that share its prefix", "[module][tracing]") {
+  const fs::path dir = scratch("scope");
+  CycleRunOptions options;
+  options.track_parents = false;
+  options.timeline = {(dir / "t.json").string(), 0, 1000, "accelerator.core_1"};
+  options.vcd = {(dir / "v.vcd").string(), 0, 1000, "accelerator.core_1"};
+  run_one_ray(options, 11);  // cores 0 to 10, one ray each
+  std::set<std::string> processes;
+  for (const auto& e : nlohmann::json::parse(std::ifstream(dir / "t.json"))["traceEvents"])
+    if (e["ph"] == "M" && e["name"] == "process_name") processes.insert(e["args"]["name"].get<std::string>());
+  CHECK(processes == std::set<std::string>{"accelerator.core_1"});
+  std::set<std::string> signals;
+  for (const auto& [name, changes] : read_vcd(dir / "v.vcd", 2000)) signals.insert(name);
+  CHECK(signals.count("accelerator.core_1.busy_slots") == 1);
+  CHECK(signals.count("accelerator.core_1.box_unit.ops_in_flight") == 1);
+  for (const std::string& n : signals) CHECK(n.rfind("accelerator.core_1.", 0) == 0);
+
+  // A pattern: every core's box unit.
+  options.timeline.path.clear();
+  options.vcd.scope = "accelerator.core_*.box_unit";
+  run_one_ray(options, 11);
+  signals.clear();
+  for (const auto& [name, changes] : read_vcd(dir / "v.vcd", 2000)) signals.insert(name);
+  CHECK(signals.size() == 11);
+  CHECK(signals.count("accelerator.core_10.box_unit.ops_in_flight") == 1);
+
+  // A scope that names nothing: an error naming it, and no file.
+  fs::remove(dir / "v.vcd");
+  options.vcd.scope = "accelerator.core_11";
+  CHECK_THROWS_AS(run_one_ray(options, 11), TraceScopeError);
+  CHECK_THROWS_WITH(run_one_ray(options, 11), Catch::Contains("'accelerator.core_11'") &&
+                                                  Catch::Contains("accelerator.core_10"));
+  CHECK_FALSE(fs::exists(dir / "v.vcd"));
+  fs::remove_all(dir);
+}
+
+TEST_CASE("the VCD has the L2, DRAM and ray source and ends with the run", "[module][tracing]") {
+  const fs::path dir = scratch("vcd_memory");
+  CycleRunOptions options;
+  options.track_parents = false;
+  options.vcd = {(dir / "run.vcd").string(), 0, 1000000, ""};
+  const ThreeFloors f;
+  HwConfig cfg = one_slot(3, 5, 11, 7);
+  cfg.memory = MemoryConfig{};  // the cache hierarchy and the built-in DRAM
+  const std::vector<TraceRay> rays = {down_from(1, 1.0f), down_from(2, 1.0f)};
+  const CycleRunResult r = run_cycle_replay(feed_of(rays), f.scene, f.bvh, ReplayOptions{}, cfg, {}, options);
+  const uint64_t period = 2000, end = r.counters.cycles;
+  const auto v = read_vcd(dir / "run.vcd", period);
+  const auto last = [&](const std::string& name) { return v.at(name).back().second; };
+  // The DRAM delivered every byte the statistics count; nothing is left in flight.
+  CHECK(last("accelerator.dram.bytes") == r.hw["memory"]["port"]["dram"]["bytes"]);
+  CHECK(last("accelerator.dram.bytes") > 0);
+  CHECK(last("accelerator.dram.requests_in_flight") == 0);
+  CHECK(last("accelerator.l2_cache.misses_in_flight") == 0);
+  uint64_t l2_peak = 0;
+  for (const auto& [cycle, value] : v.at("accelerator.l2_cache.misses_in_flight")) l2_peak = std::max(l2_peak, value);
+  CHECK(l2_peak >= 1);
+  CHECK(last("accelerator.ray_source.rays_emitted") == 2);
+  CHECK(last("accelerator.ray_source.rays_waiting") == 0);
+  CHECK(v.at("accelerator.ray_source.rays_waiting").size() >= 2);  // the second ray waited for the slot
+  // The file ends after the run's last cycle, not at the window's end.
+  std::ifstream in(dir / "run.vcd");
+  std::string line, final_time;
+  while (std::getline(in, line))
+    if (!line.empty() && line[0] == '#') final_time = line;
+  CHECK(final_time == "#" + std::to_string((end + 1) * period));
   fs::remove_all(dir);
 }
 

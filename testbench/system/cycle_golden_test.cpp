@@ -68,6 +68,7 @@ void strip_unpinned(nlohmann::json& j) {
                             "bundle_max", "emission_width", "emission_depth"})
         hw["source"].erase(f);
       hw.erase("shader");
+      for (const char* f : {"warmup_rays", "warmup_cycles", "interval_cycles"}) hw["sim"].erase(f);
     }
   }
   for (const char* extra : {"provenance", "vbsim", "checks", "offset_fallbacks", "energy"}) j.erase(extra);
@@ -76,6 +77,8 @@ void strip_unpinned(nlohmann::json& j) {
     j["hw"].erase("emission");
     j["hw"].erase("energy");
     j["hw"].erase("area");
+    // Latency percentiles, miss latency per level, warm-up (docs/hw-model.md, "Statistics").
+    for (const char* f : {"latency_distribution", "miss_latency", "warmup", "measured"}) j["hw"].erase(f);
   }
   // Counts added after the files were pinned: the per-ray result operations,
   // the emission operations by ray category, and the traversal stack's pushes
