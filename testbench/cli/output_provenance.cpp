@@ -36,14 +36,13 @@ void add_vcd_provenance(const std::string& vcd_path, const nlohmann::json& prove
 
 void add_timeline_provenance(const std::string& path, const nlohmann::json& provenance) {
   if (!std::filesystem::is_regular_file(path)) return;  // /dev/null, a FIFO: nothing to read back
-  nlohmann::json j;
-  {
-    std::ifstream in(path);
-    if (!in) throw std::runtime_error(fmt::format("{}: cannot read the timeline back", path));
-    j = nlohmann::json::parse(in);
-  }
-  j["otherData"] = {{"provenance", provenance}};
-  write_output_file(path, j.dump() + "\n", "timeline");
+  // Copied through, never parsed: a timeline may be far larger than memory.
+  std::ifstream in(path, std::ios::binary);
+  if (!in || in.get() != '{') throw std::runtime_error(fmt::format("{}: cannot read the timeline back", path));
+  AtomicOutputFile out(path, true);
+  out.stream() << "{\"otherData\":" << nlohmann::json{{"provenance", provenance}}.dump() << ",";
+  if (in.peek() != std::char_traits<char>::eof()) out.stream() << in.rdbuf();
+  out.commit();
 }
 
 }  // namespace vbsim::cli

@@ -20,7 +20,8 @@ std::string markdown_provenance(const nlohmann::json& provenance);
 /// Rewrites the file through a temporary next to it.
 void add_vcd_provenance(const std::string& vcd_path, const nlohmann::json& provenance);
 
-/// Adds "otherData": {"provenance": ...} to a Chrome trace-event JSON file.
+/// Adds "otherData": {"provenance": ...} to a Chrome trace-event JSON file (an
+/// object: its first member), copying the file through a temporary next to it.
 void add_timeline_provenance(const std::string& path, const nlohmann::json& provenance);
 
 }  // namespace vbsim::cli

@@ -151,7 +151,7 @@ TEST_CASE("the timeline names processes and threads by instance and shows unit a
   fs::remove_all(dir);
 }
 
-TEST_CASE("a trace scope names one instance exactly, not those that share its prefix", "[module][tracing]") {
+TEST_CASE("a trace scope names one instance exactly and not those that share its prefix", "[module][tracing]") {
   const fs::path dir = scratch("scope");
   CycleRunOptions options;
   options.track_parents = false;
@@ -159,7 +159,8 @@ TEST_CASE("a trace scope names one instance exactly, not those that share its pr
   options.vcd = {(dir / "v.vcd").string(), 0, 1000, "accelerator.core_1"};
   run_one_ray(options, 11);  // cores 0 to 10, one ray each
   std::set<std::string> processes;
-  for (const auto& e : nlohmann::json::parse(std::ifstream(dir / "t.json"))["traceEvents"])
+  const auto timeline = nlohmann::json::parse(std::ifstream(dir / "t.json"));
+  for (const auto& e : timeline["traceEvents"])
     if (e["ph"] == "M" && e["name"] == "process_name") processes.insert(e["args"]["name"].get<std::string>());
   CHECK(processes == std::set<std::string>{"accelerator.core_1"});
   std::set<std::string> signals;

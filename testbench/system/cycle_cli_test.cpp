@@ -2,6 +2,9 @@
 // statistics, the VCD and the timeline.
 #include <catch2/catch.hpp>
 
+#include <filesystem>
+#include <sstream>
+
 #include <nlohmann/json.hpp>
 
 #include "run_vbsim.h"
@@ -49,4 +52,46 @@ TEST_CASE("cycle mode writes the hw statistics, a VCD and a timeline", "[system]
   CHECK_THAT(read_file(dir / "w.vcd"), Catch::Contains("$var") && Catch::Contains("rays_done"));
   const auto tl = nlohmann::json::parse(read_file(dir / "t.json"));
   CHECK(tl["traceEvents"].size() > 0);
+}
+
+TEST_CASE("a trace scope that names no instance is a usage error naming it", "[system][cycle][tracing]") {
+  const std::string trace = source_dir() + "/traces/bunny/paths.jsonl";
+  const auto dir = scratch_dir("cycle_scope");
+  RunResult r = run_vbsim("replay " + trace + " --mode cycle -q --timeline " + (dir / "t.json").string() +
+                          " --trace-scope accelerator.core_9");  // the small preset has cores 0 to 3
+  CHECK(r.exit_code == 2);
+  CHECK_THAT(r.output, Catch::Contains("--trace-scope") && Catch::Contains("'accelerator.core_9'") &&
+                           Catch::Contains("accelerator.core_3"));
+  CHECK_FALSE(std::filesystem::exists(dir / "t.json"));
+  r = run_vbsim("replay " + trace + " --mode cycle -q --timeline " + (dir / "t.json").string() +
+                " --trace-scope 'accelerator.core_*'");
+  CHECK(r.exit_code == 0);
+  CHECK(std::filesystem::exists(dir / "t.json"));
+}
+
+TEST_CASE("interval statistics and a warm-up from the command line", "[system][cycle][stats]") {
+  const std::string trace = source_dir() + "/traces/bunny/paths.jsonl";
+  const auto dir = scratch_dir("cycle_intervals");
+  const RunResult r = run_vbsim("replay " + trace + " --mode cycle -q --interval-stats " + (dir / "iv.jsonl").string() +
+                                " --interval 5000 --warmup-rays 100 --stats " + (dir / "s.json").string());
+  INFO(r.output);
+  REQUIRE(r.exit_code == 0);
+  const auto s = nlohmann::json::parse(read_file(dir / "s.json"));
+  CHECK(s["config"]["hw"]["sim"]["interval_cycles"] == 5000);
+  CHECK(s["config"]["hw"]["sim"]["warmup_rays"] == 100);
+  CHECK(s["hw"]["warmup"]["excluded_rays"].get<uint64_t>() >= 100);
+  CHECK(s["hw"]["measured"]["rays"].get<uint64_t>() + s["hw"]["warmup"]["excluded_rays"].get<uint64_t>() == 1008);
+  std::istringstream lines(read_file(dir / "iv.jsonl"));
+  std::string line;
+  uint64_t rays = 0, rows = 0;
+  while (std::getline(lines, line)) {
+    rays += nlohmann::json::parse(line)["rays"].get<uint64_t>();
+    ++rows;
+  }
+  CHECK(rays == 1008);
+  CHECK(rows == s["hw"]["cycles"].get<uint64_t>() / 5000 + 1);
+  // Options that need a file or exclude each other.
+  CHECK(run_vbsim("replay " + trace + " --mode cycle -q --interval 100").exit_code == 2);
+  CHECK(run_vbsim("replay " + trace + " --mode cycle -q --warmup-rays 1 --warmup-cycles 1").exit_code == 2);
+  CHECK(run_vbsim("replay " + trace + " --interval-stats " + (dir / "x.jsonl").string()).exit_code == 2);
 }
