@@ -502,6 +502,7 @@ std::string Accelerator::hw_table() {
       100 * share["idle_for_dependencies"].get<double>(), 100 * share["idle_for_window"].get<double>(),
       100 * share["holding_for_a_slot"].get<double>(), e["children_waited"].get<uint64_t>(),
       e["mean_dependency_wait_cycles"].get<double>());
+  table += run_statistics_lines(statistics_sample(c.cycles + 1, true), statistics_);
   return table;
 }
 

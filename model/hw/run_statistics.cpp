@@ -124,6 +124,27 @@ nlohmann::json RunStatistics::miss_latency_json(const StatsSample& a, const Stat
                             b.l2.mshr_stall_cycles - a.l2.mshr_stall_cycles)}};
 }
 
+std::string run_statistics_lines(const StatsSample& end, const RunStatistics* statistics) {
+  LatencyDistribution all;
+  for (const LatencyDistribution& d : end.latency_by_kind) all.merge(d);
+  std::string s = fmt::format("  ray latency percentiles (cycles)  p50 {}  p90 {}  p95 {}  p99 {}  max {}\n",
+                              all.percentile(50), all.percentile(90), all.percentile(95), all.percentile(99), all.max());
+  const nlohmann::json miss = RunStatistics::miss_latency_json(StatsSample{}, end);
+  if (!miss.is_null())
+    s += fmt::format("  mean miss latency (lookup to data, cycles)  L1 {:.1f}  L2 {:.1f}\n",
+                     miss["l1"]["mean_cycles"].get<double>(), miss["l2"]["mean_cycles"].get<double>());
+  if (statistics && statistics->options().warmup() && !statistics->measured_json().is_null()) {
+    const nlohmann::json w = statistics->warmup_json(), m = statistics->measured_json();
+    s += fmt::format("  after the warm-up (from cycle {}, {} rays excluded): {} rays in {} cycles, rays/cycle {:.4f}, "
+                     "latency p50 {} p99 {}\n",
+                     w["measured_from_cycle"].get<uint64_t>(), w["excluded_rays"].get<uint64_t>(),
+                     m["rays"].get<uint64_t>(), m["cycles"].get<uint64_t>(), m["rays_per_cycle"].get<double>(),
+                     m["latency_distribution"]["overall"]["p50"].get<uint64_t>(),
+                     m["latency_distribution"]["overall"]["p99"].get<uint64_t>());
+  }
+  return s;
+}
+
 nlohmann::json latency_distribution_json(const std::array<LatencyDistribution, kRayKindCount>& by_kind) {
   LatencyDistribution all;
   nlohmann::json kinds = nlohmann::json::object();

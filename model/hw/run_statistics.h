@@ -89,6 +89,10 @@ class RunStatistics {
   uint64_t rows_ = 0;
 };
 
+/// The human table's lines: latency percentiles, miss latency per level and,
+/// with a warm-up, the figures after it (`statistics` may be null).
+std::string run_statistics_lines(const StatsSample& end, const RunStatistics* statistics);
+
 /// `hw.latency_distribution`: overall and per-kind percentiles and a histogram of log2 buckets.
 nlohmann::json latency_distribution_json(const std::array<LatencyDistribution, kRayKindCount>& by_kind);
 
