@@ -271,6 +271,7 @@ class Engine final : public CycleEngine, private SourceHost {
   struct CoreTrace {
     uint32_t unit_signal[kUnits], unit_track[kUnits];
     uint32_t busy_signal, memory_track;
+    uint32_t reads_signal;  ///< reads of its slots issued, data not yet there
   };
   static const char* instance_name(sc_core::sc_interface* iface, const std::string& fallback) {
     const auto* o = dynamic_cast<const sc_core::sc_object*>(iface);
@@ -290,6 +291,7 @@ class Engine final : public CycleEngine, private SourceHost {
         t.unit_track[u] = timeline_ ? timeline_->track(core, thread, units[u]) : TimelineRecorder::kNoTrack;
       }
       t.busy_signal = vcd_ ? vcd_->signal(core, "busy_slots") : VcdRecorder::kNoSignal;
+      t.reads_signal = vcd_ ? vcd_->signal(core, "reads_in_flight") : VcdRecorder::kNoSignal;
       t.memory_track = timeline_ ? timeline_->track(core, "memory reads") : TimelineRecorder::kNoTrack;
       core_trace_.push_back(t);
     }
@@ -316,8 +318,12 @@ class Engine final : public CycleEngine, private SourceHost {
   /// Slot `id`'s step `name` over [start, end), whose read (if any) took [asked, ready).
   __attribute__((noinline, cold)) void trace_step(uint32_t id, const char* name, uint64_t start, uint64_t end,
                                                   uint64_t asked, uint64_t ready) {
-    if (!timeline_) return;
     const Slot& s = slots_[id];
+    if (vcd_ && ready > asked) {
+      vcd_->add(core_trace_[s.core].reads_signal, asked, +1);
+      vcd_->add(core_trace_[s.core].reads_signal, ready, -1);
+    }
+    if (!timeline_) return;
     timeline_->add(slot_track_[id], name, start, end, s.tr.id);
     if (ready > asked) timeline_->add(core_trace_[s.core].memory_track, name, asked, ready, s.tr.id);
   }

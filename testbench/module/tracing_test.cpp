@@ -95,7 +95,12 @@ TEST_CASE("the VCD shows each instance's values at the cycles they change", "[mo
   CHECK(v.at("accelerator.core_0.triangle_tester.ops_in_flight") == Changes{{0, 0}, {25, 1}, {36, 0}});
   CHECK(v.at("accelerator.core_0.avoidance_unit.ops_in_flight") == Changes{{0, 0}});
   CHECK(v.at("accelerator.core_0.busy_slots") == Changes{{0, 0}, {1, 1}, {36, 0}});
+  // Reads [6, 9), [14, 17), [22, 25).
+  CHECK(v.at("accelerator.core_0.reads_in_flight") ==
+        Changes{{0, 0}, {6, 1}, {9, 0}, {14, 1}, {17, 0}, {22, 1}, {25, 0}});
   CHECK(v.at("accelerator.rays_done") == Changes{{0, 0}, {36, 1}});
+  CHECK(v.at("accelerator.ray_source.rays_emitted") == Changes{{0, 0}, {0, 1}});  // emission starts at 0
+  CHECK(v.at("accelerator.ray_source.rays_waiting") == Changes{{0, 0}, {0, 1}, {1, 0}});  // dispatched at 1
 
   // A window that starts inside the run: the levels at its start, then its changes.
   options.vcd = {(dir / "late.vcd").string(), 10, 15, ""};
