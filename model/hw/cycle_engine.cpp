@@ -79,17 +79,22 @@ class Engine final : public CycleEngine, private SourceHost {
 
   void start() override { source_.start(*this, 0); }
 
-  void advance(const uint64_t& limit) override {
-    if (__builtin_expect(sampling_, 0)) return advance_sampled(limit);
-    run_until([&limit] { return limit; });
+  void advance(const uint64_t& limit_ref) override {
+    for (;;) {
+      run_until(limit_ref);
+      // Statistics samples: every event before next_sample_ is handled now.
+      if (__builtin_expect(!sampling_, 1) || stopped_ || next_sample_ > limit_ref || complete()) return;
+      take_sample(next_sample_);
+    }
   }
-  /// Handles the events before `limit()` (read again after each: it may be lowered meanwhile).
-  template <class Limit>
-  __attribute__((always_inline)) void run_until(const Limit& limit_of) {
+  /// Handles the events before `limit_ref` (read again after each: it may be
+  /// lowered meanwhile) and before the next statistics sample. Its one caller
+  /// keeps the steps inlined into this loop.
+  __attribute__((always_inline)) void run_until(const uint64_t& limit_ref) {
     uint64_t at;
     uint32_t id;
     while (!stopped_) {
-      const uint64_t limit = limit_of();
+      const uint64_t limit = std::min(limit_ref, next_sample_);  // next_sample_: never without samples
       // A memory step runs before the events of its cycle: the wheel opens no
       // cycle at or after it (its fence; the memory's work is always for a
       // later cycle than the one being handled).
@@ -107,16 +112,8 @@ class Engine final : public CycleEngine, private SourceHost {
       else continue_parked(id - resumed_id_, at);
     }
   }
-  /// advance() stopping at each statistics sample's cycle to take it.
-  __attribute__((noinline)) void advance_sampled(const uint64_t& limit) {
-    for (;;) {
-      run_until([this, &limit] { return std::min(limit, next_sample_); });
-      if (stopped_ || next_sample_ > limit || complete()) return;
-      take_sample(next_sample_);
-    }
-  }
   /// Every event before `cycle` is handled: the statistics sample of `cycle`.
-  void take_sample(uint64_t cycle) {
+  __attribute__((noinline, cold)) void take_sample(uint64_t cycle) {
     const bool interval = sample_interval_ && cycle > 0 && cycle % sample_interval_ == 0;
     const bool warmup = cycle == warmup_cycle_;
     on_sample_(cycle, interval, warmup);
