@@ -15,14 +15,15 @@ namespace vbsim::hw {
 
 namespace {
 
-/// The hierarchical names of `root` and every object below it.
+/// The hierarchical names of `root` and every module below it (not their
+/// ports, exports, sockets or processes), parents first.
 std::vector<std::string> instance_names(const sc_core::sc_object& root) {
-  std::vector<std::string> out{root.name()};
-  for (size_t i = 0; i < out.size(); ++i) {
-    const sc_core::sc_object* o = sc_core::sc_find_object(out[i].c_str());
-    if (!o) continue;
-    for (const sc_core::sc_object* child : o->get_child_objects()) out.push_back(child->name());
-  }
+  std::vector<const sc_core::sc_object*> modules{&root};
+  for (size_t i = 0; i < modules.size(); ++i)
+    for (const sc_core::sc_object* child : modules[i]->get_child_objects())
+      if (dynamic_cast<const sc_core::sc_module*>(child)) modules.push_back(child);
+  std::vector<std::string> out;
+  for (const sc_core::sc_object* m : modules) out.push_back(m->name());
   return out;
 }
 
