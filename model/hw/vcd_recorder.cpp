@@ -43,9 +43,9 @@ std::vector<std::string> scopes_of(const std::string& instance) {
 
 }  // namespace
 
-VcdRecorder::VcdRecorder(uint64_t first, uint64_t cycles, uint64_t period_ps, TraceScope scope)
+VcdRecorder::VcdRecorder(uint64_t first, uint64_t cycles, uint64_t period_ps, TraceScope scope, size_t spill_chunk)
     : first_(first), end_(first + cycles < first ? ~uint64_t{0} : first + cycles), period_ps_(period_ps),
-      scope_(std::move(scope)) {}
+      scope_(std::move(scope)), changes_(spill_chunk) {}
 
 uint32_t VcdRecorder::signal(const std::string& instance, const std::string& name) {
   if (!scope_.matches(instance)) return kNoSignal;
@@ -55,7 +55,7 @@ uint32_t VcdRecorder::signal(const std::string& instance, const std::string& nam
   return static_cast<uint32_t>(names_.size() - 1);
 }
 
-void VcdRecorder::write(const std::string& path, uint64_t run_end) const {
+void VcdRecorder::write(const std::string& path, uint64_t run_end) {
   AtomicOutputFile file(path);  // named only once complete; throws OutputError naming the path
   std::ostream& out = file.stream();
   const uint64_t end = std::max(first_, std::min(end_, run_end + 1));  // [first, end): the run's last cycle included
@@ -89,15 +89,14 @@ void VcdRecorder::write(const std::string& path, uint64_t run_end) const {
   out << "#" << first_ * period_ps_ << "\n$dumpvars\n";
   for (uint32_t i = 0; i < level.size(); ++i) out << "b" << binary(level[i]) << " " << vcd_id(i) << "\n";
   out << "$end\n";
-  std::vector<Change> changes = changes_;
-  std::stable_sort(changes.begin(), changes.end(), [](const Change& a, const Change& b) { return a.cycle < b.cycle; });
-  for (size_t k = 0; k < changes.size();) {
-    const uint64_t cycle = changes[k].cycle;
+  VcdChangeLog::Change c{};
+  for (bool have = changes_.next(c); have;) {
+    const uint64_t cycle = c.cycle;
     if (cycle >= end) break;
     std::map<uint32_t, int64_t> touched;
-    for (; k < changes.size() && changes[k].cycle == cycle; ++k) {
-      touched.emplace(changes[k].id, level[changes[k].id]);
-      level[changes[k].id] += changes[k].delta;
+    for (; have && c.cycle == cycle; have = changes_.next(c)) {
+      touched.emplace(c.id, level[c.id]);
+      level[c.id] += c.delta;
     }
     bool any = false;
     for (const auto& [id, old] : touched) any |= level[id] != old;
