@@ -2,8 +2,10 @@
 // statistics, the VCD and the timeline.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <sstream>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -94,4 +96,32 @@ TEST_CASE("interval statistics and a warm-up from the command line", "[system][c
   CHECK(run_vbsim("replay " + trace + " --mode cycle -q --interval 100").exit_code == 2);
   CHECK(run_vbsim("replay " + trace + " --mode cycle -q --warmup-rays 1 --warmup-cycles 1").exit_code == 2);
   CHECK(run_vbsim("replay " + trace + " --interval-stats " + (dir / "x.jsonl").string()).exit_code == 2);
+}
+
+TEST_CASE("the latency percentiles are those of the ray log's latencies sorted", "[system][cycle][stats]") {
+  const std::string trace = source_dir() + "/traces/bunny/paths.jsonl";
+  const auto dir = scratch_dir("cycle_percentiles");
+  const RunResult r = run_vbsim("replay " + trace + " --mode cycle -q --ray-log " + (dir / "rays.jsonl").string() +
+                                " --stats " + (dir / "s.json").string());
+  INFO(r.output);
+  REQUIRE(r.exit_code == 0);
+  std::vector<uint64_t> latency;
+  std::istringstream lines(read_file(dir / "rays.jsonl"));
+  std::string line;
+  while (std::getline(lines, line)) {
+    const auto j = nlohmann::json::parse(line);
+    latency.push_back(j["finish"].get<uint64_t>() - j["start"].get<uint64_t>());
+  }
+  REQUIRE(latency.size() == 1008);
+  std::sort(latency.begin(), latency.end());
+  // Nearest rank: the ceil(p/100 x 1008)-th smallest: p50 the 504th, p90 the 908th (907.2 up),
+  // p95 the 958th (957.6 up), p99 the 998th (997.92 up).
+  const auto stats = nlohmann::json::parse(read_file(dir / "s.json"));
+  const auto& overall = stats["hw"]["latency_distribution"]["overall"];
+  CHECK(overall["p50"] == latency[503]);
+  CHECK(overall["p90"] == latency[907]);
+  CHECK(overall["p95"] == latency[957]);
+  CHECK(overall["p99"] == latency[997]);
+  CHECK(overall["max"] == latency.back());
+  CHECK(overall["min"] == latency.front());
 }
