@@ -20,6 +20,26 @@
 // spilled entries remain returns a Refill request for the top min(depth, n)
 // spilled entries, one read (counted in refills()). The logical stack, and so
 // the traversal order, is unchanged; only the timing pays for the overflow.
+//
+// Units. What the box unit, the triangle tester and the avoidance unit answer
+// comes from a units policy passed to each step (begin, node_step,
+// triangle_step): BuiltinUnits, the default, computes it with the datapath
+// inline (the ray's latched RayBoxTester and Tester, avoidance_decide); a
+// timing model passes a policy that asks its unit modules instead
+// (hw/stepper_units.h). A policy provides
+//
+//   bool root_box(const Ray&, const RayBoxTester& latched, const Bounds3f&, float tmax)
+//   unsigned node_boxes(const Ray&, const RayBoxTester& latched, uint32_t node,
+//                       const BvhNode&, float tmax, float& entry0, float& entry1)
+//       bit c set: child c met, entry_c its entry distance (RayBoxTester::hits)
+//   bool triangle(const Ray&, const Tester& latched, uint32_t index,
+//                 const BvhTriangle&, float tmax, Hit&)      (the tester contract)
+//   AvoidanceDecision avoidance(const AvoidanceConfig&, const Ray&, uint32_t index,
+//                               const Triangle&, const Hit&)  (avoidance_decide's)
+//
+// and the stepper keeps the visiting order, tie breaking and counters whatever
+// the answers: a policy that answers as the datapath does gives closest_hit()'s
+// hit bit for bit.
 #pragma once
 #include <cstddef>
 #include <cstdint>
@@ -49,6 +69,25 @@ struct TriangleStepOutcome {
   bool stop = false;       ///< any-hit search: the ray is finished
 };
 
+/// The datapath's own answers, inlined (no call leaves the step).
+struct BuiltinUnits {
+  static bool root_box(const Ray&, const RayBoxTester& latched, const Bounds3f& b, float tmax) {
+    return latched.hits(b, tmax);
+  }
+  static unsigned node_boxes(const Ray&, const RayBoxTester& latched, uint32_t, const BvhNode& n, float tmax,
+                             float& entry0, float& entry1) {
+    return latched.hits(n, tmax, entry0, entry1);
+  }
+  template <class Tester>
+  static bool triangle(const Ray&, const Tester& latched, uint32_t, const BvhTriangle& bt, float tmax, Hit& h) {
+    return latched.intersect(bt.tri, tmax, h);
+  }
+  static AvoidanceDecision avoidance(const AvoidanceConfig& cfg, const Ray& ray, uint32_t, const Triangle& tri,
+                                     const Hit& h) {
+    return avoidance_decide(cfg, ray, tri, h);
+  }
+};
+
 template <class Tester>
 class BvhStepper {
  public:
@@ -61,7 +100,8 @@ class BvhStepper {
 
   /// Latches `ray` and tests the root box. Counters go to `cc` and `tc`
   /// (which must outlive the search).
-  StepRequest begin(const Ray& ray, bool any_hit, CandidateCounters& cc, TraversalCounters& tc) {
+  template <class Units = BuiltinUnits>
+  StepRequest begin(const Ray& ray, bool any_hit, CandidateCounters& cc, TraversalCounters& tc, Units&& units = {}) {
     ray_ = ray;
     any_hit_ = any_hit;
     cc_ = &cc;
@@ -75,17 +115,18 @@ class BvhStepper {
     tester_.emplace(ray_);
     box_.emplace(ray_);
     ++tc.box_tests;
-    if (!box_->hits(bvh_->root_bounds, tmax_)) return done();
+    if (!units.root_box(ray_, *box_, bvh_->root_bounds, tmax_)) return done();
     return visit(bvh_->root);
   }
 
   /// Both child boxes of the current node (the request was Node).
-  StepRequest node_step() {
+  template <class Units = BuiltinUnits>
+  StepRequest node_step(Units&& units = {}) {
     const BvhNode& n = bvh_->nodes[current_.index];
     ++tc_->node_visits;
     tc_->box_tests += 2;
     float t0, t1;
-    const unsigned hit = box_->hits(n, tmax_, t0, t1);
+    const unsigned hit = units.node_boxes(ray_, *box_, current_.index, n, tmax_, t0, t1) & 3u;
     if (hit == 0u) return pop();
     // One or both children met: descend into the nearer (child 0 on a tie),
     // push the farther when both are met. Written without branches on the
@@ -106,16 +147,19 @@ class BvhStepper {
   }
 
   /// Triangle `i` (an index in Bvh::tris inside the current leaf, taken in order).
-  TriangleStepOutcome triangle_step(uint32_t i) {
+  template <class Units = BuiltinUnits>
+  TriangleStepOutcome triangle_step(uint32_t i, Units&& units = {}) {
     TriangleStepOutcome out;
     const BvhTriangle& bt = bvh_->tris[i];
     ++tc_->triangle_tests;
     Hit h;
-    if (!tester_->intersect(bt.tri, tmax_, h)) return out;
+    if (!units.triangle(ray_, *tester_, i, bt, tmax_, h)) return out;
     out.candidate = true;
     h.prim = static_cast<int32_t>(bt.prim);
     const uint64_t suspects_before = cc_->suspects;
-    const bool accept = filter_->accept(ray_, bt.tri, h.prim, h, *cc_);
+    const bool accept = filter_->accept(ray_, bt.tri, h.prim, h, *cc_, [&](const AvoidanceConfig& cfg) {
+      return units.avoidance(cfg, ray_, i, bt.tri, h);
+    });
     out.suspect = cc_->suspects != suspects_before;
     if (!accept) {
       ++rejected_;
@@ -138,6 +182,8 @@ class BvhStepper {
   }
 
   const Hit& hit() const { return best_; }
+  const Ray& ray() const { return ray_; }  ///< the latched ray
+  float tmax() const { return tmax_; }     ///< the interval's end now (the closest accepted hit's t)
   uint64_t rejected() const { return rejected_; }  ///< candidates the filter rejected for this ray
   uint64_t spills() const { return spills_; }      ///< entries pushed past the on-chip depth
   uint64_t refills() const { return refills_; }    ///< refill reads

@@ -35,6 +35,16 @@ class CandidateFilter {
   /// True when the candidate `hit` on triangle `prim` may become the closest hit.
   bool accept(const Ray& ray, const Triangle& tri, int32_t prim, const Hit& hit,
               CandidateCounters& c) const {
+    return accept(ray, tri, prim, hit, c,
+                  [&](const AvoidanceConfig& cfg) { return avoidance_decide(cfg, ray, tri, hit); });
+  }
+
+  /// The same, with the avoidance unit's decision from `decide(config)`
+  /// (asked only for a candidate that reaches the unit: validity bit, not a
+  /// camera ray, not dropped by primid) in place of avoidance_decide().
+  template <class Decide>
+  bool accept(const Ray& ray, const Triangle& /*tri*/, int32_t prim, const Hit& /*hit*/, CandidateCounters& c,
+              Decide&& decide) const {
     ++c.candidates;
     if (primid_ && prim == ray.parent_prim) {
       ++c.rejected;
@@ -44,7 +54,7 @@ class CandidateFilter {
     // A camera ray has no parent surface to re-hit: the unit leaves it alone. The
     // hardware tells it by the ray's kind field, which every ray already carries.
     if (!avoid_ || ray.kind == RayKind::Primary) return true;
-    const AvoidanceDecision dec = avoidance_decide(cfg_, ray, tri, hit);
+    const AvoidanceDecision dec = decide(cfg_);
     c.suspects += dec.suspect;
     if (!dec.reject) return true;
     ++c.rejected;
@@ -54,6 +64,9 @@ class CandidateFilter {
     c.invalid_component += (dec.invalid & AvoidanceDecision::kTestComponent) != 0;
     return false;
   }
+
+  const AvoidanceConfig& avoidance() const { return cfg_; }
+  bool uses_avoidance() const { return avoid_; }
 
  private:
   bool primid_;

@@ -4,14 +4,19 @@
 // returns a module implementing the unit's interface (hw/unit_interfaces.h),
 // which the enclosing module's port is bound to:
 //
-//   box_unit, triangle_tester, avoidance_unit   PipelineIf     (in each core)
-//   l1_cache                                     MemoryReadIf   (in each core: the core's whole
-//                                                                memory path; it does not reach the L2)
-//   dispatcher                                   DispatchIf
+//   box_unit         BoxUnitIf         (in each core) the root's box, both child boxes of a node
+//   triangle_tester  TriangleTesterIf  (in each core) one triangle: candidate, t, u, v, front/back bit
+//   avoidance_unit   AvoidanceUnitIf   (in each core) one suspect candidate: reject or accept
+//   l1_cache         MemoryReadIf      (in each core: the core's whole memory path; it does not
+//                                       reach the L2)
+//   dispatcher       DispatchIf
 //
 // The memory behind the L2 is replaced at the TLM-2.0 socket instead
 // (Accelerator::memory_socket with external_memory set). A replaced unit
-// changes when things happen; what the rays hit stays the datapath's.
+// decides when its operations happen and what they answer (the operation
+// carries its payload: hw/unit_operations.h); a replacement that answers as
+// the datapath does keeps every hit, one that computes otherwise (e.g.
+// hw/examples/reduced_precision_units.h) changes what the rays hit.
 #pragma once
 #include <cstdint>
 #include <functional>

@@ -16,6 +16,7 @@
 #include "hw/ideal_memory.h"
 #include "hw/l1_cache.h"
 #include "hw/pipeline_units.h"
+#include "hw/port_units.h"
 #include "hw/ray_source.h"
 #include "hw/ray_test_core.h"
 #include "hw/result_sink.h"
@@ -190,35 +191,25 @@ class Engine final : public CycleEngine, private SourceHost {
   enum Unit { kBox = CoreCounters::kBox, kTriangle = CoreCounters::kTriangle, kAvoidance = CoreCounters::kAvoidance,
               kUnits };
   static constexpr bool kBuiltinUnits = !std::is_same_v<Memory, MemoryReadIf>;
-  // One operation of a core's unit: the built-in module directly, or through its interface.
+  // The built-in units' schedules (every unit built-in: kBuiltinUnits).
   __attribute__((always_inline)) static UnitSchedule box_op(const CoreBinding& c, uint64_t ready, uint64_t now) {
-    if constexpr (kBuiltinUnits) return c.box_builtin->schedule_inline(ready, now);
-    else return c.box_builtin ? c.box->schedule(ready, now) : replaced_op(c, kBox, c.box, ready, now);
+    return c.box_builtin->schedule_inline(ready, now);
   }
   __attribute__((always_inline)) static UnitSchedule triangle_op(const CoreBinding& c, uint64_t ready, uint64_t now) {
-    if constexpr (kBuiltinUnits) return c.triangle_builtin->schedule_inline(ready, now);
-    else return c.triangle_builtin ? c.triangle->schedule(ready, now) : replaced_op(c, kTriangle, c.triangle, ready, now);
+    return c.triangle_builtin->schedule_inline(ready, now);
   }
   __attribute__((always_inline)) static UnitSchedule avoidance_op(const CoreBinding& c, uint64_t ready,
                                                                   uint64_t now) {
-    if constexpr (kBuiltinUnits) return c.avoidance_builtin->schedule_inline(ready, now);
-    else
-      return c.avoidance_builtin ? c.avoidance->schedule(ready, now)
-                                 : replaced_op(c, kAvoidance, c.avoidance, ready, now);
+    return c.avoidance_builtin->schedule_inline(ready, now);
   }
-  /// An operation of a replacement unit, whose answer is checked against
-  /// PipelineIf's contract and counted here (a built-in unit counts its own).
-  static UnitSchedule replaced_op(const CoreBinding& c, int unit, PipelineIf* u, uint64_t ready, uint64_t now) {
-    const UnitSchedule s = u->schedule(ready, now);
-    if (s.issue < ready || s.done < s.issue)
-      throw std::runtime_error(fmt::format(
-          "{}: an operation ready at cycle {} was scheduled to issue at {} and be done at {}: PipelineIf::schedule "
-          "must answer issue >= ready and done >= issue",
-          instance_name(u, std::string(c.core->name()) + ".unit"), ready, s.issue, s.done));
-    UnitCounters& counted = c.core->counters.replaced_units[unit];
-    ++counted.ops;
-    counted.wait_cycles += s.issue - ready;
-    return s;
+  /// Otherwise: the units policy of slot `id`'s next step, its operands ready at `ready`.
+  PortUnits<Tester> port_units(const Slot& s, uint32_t id, uint64_t ready, uint64_t now) {
+    call_.core = &cores_[s.core];
+    call_.from = {s.core, id, s.tr.id, s.trace_index};
+    call_.ready = ready;
+    call_.now = now;
+    call_.box_called = call_.avoidance_called = false;
+    return PortUnits<Tester>(call_, avoidance_in_use_);
   }
 
   /// Slot `id`'s read of `bytes` at `addr`, issued at `now`.
@@ -383,9 +374,20 @@ class Engine final : public CycleEngine, private SourceHost {
     s.emitted = ray.emitted;
     s.entered = ray.entered;
     KindStats& ks = replayer_.stats().by_kind[static_cast<int>(s.tr.kind)];
-    s.pending = s.stepper.begin(s.er.ray, replayer_.any_hit(s.tr, s.er), ks.candidates, ks.traversal);
     // The root box test: bounds latched with the ray.
-    const UnitSchedule box = box_op(core, at, at);
+    UnitSchedule box;
+    if constexpr (kBuiltinUnits) {
+      s.pending = s.stepper.begin(s.er.ray, replayer_.any_hit(s.tr, s.er), ks.candidates, ks.traversal);
+      box = box_op(core, at, at);
+    } else {
+      PortUnits<Tester> units = port_units(s, id, at, at);
+      s.pending = s.stepper.begin(s.er.ray, replayer_.any_hit(s.tr, s.er), ks.candidates, ks.traversal, units);
+      if (!call_.box_called) {  // an empty scene: the root's (empty) box is still tested
+        const RayBoxTester latched(s.er.ray);
+        units.root_box(s.er.ray, latched, bvh_.root_bounds, s.er.ray.tmax);
+      }
+      box = call_.box;
+    }
     if (__builtin_expect(tracing_, 0)) {
       trace_occupancy(core_index, at, +1);
       trace_source(ray.entered, ray.emitted, at);
@@ -434,12 +436,18 @@ class Engine final : public CycleEngine, private SourceHost {
     CoreCounters& cc = core.core->counters;
     ++cc.node_fetches;
     cc.memory_wait_cycles += ready - asked;
-    const UnitSchedule box = box_op(core, ready, now);
+    UnitSchedule box;
+    if constexpr (kBuiltinUnits) {
+      box = box_op(core, ready, now);
+      s.pending = s.stepper.node_step();
+    } else {
+      s.pending = s.stepper.node_step(port_units(s, id, ready, now));
+      box = call_.box;
+    }
     if (__builtin_expect(tracing_, 0)) {
       trace_step(id, "node", asked, box.done, asked, ready);
       trace_op(id, kBox, box);
     }
-    s.pending = s.stepper.node_step();
     schedule_step(box.done, id);
   }
 
@@ -450,13 +458,23 @@ class Engine final : public CycleEngine, private SourceHost {
     cc.memory_wait_cycles += ready - asked;
     uint64_t end = ready, next_ready = ready;
     for (uint32_t i = 0; i < count; ++i) {
-      const UnitSchedule tri = triangle_op(core, next_ready, now);
+      UnitSchedule tri;
+      TriangleStepOutcome out;
+      bool avoidance = false;
+      if constexpr (kBuiltinUnits) {
+        tri = triangle_op(core, next_ready, now);
+        out = s.stepper.triangle_step(first + i);
+        avoidance = out.suspect && avoidance_in_use_;
+      } else {
+        out = s.stepper.triangle_step(first + i, port_units(s, id, next_ready, now));
+        tri = call_.triangle;
+        avoidance = call_.avoidance_called;
+      }
       next_ready = tri.issue + 1;  // a slot hands its pipelines one triangle per cycle
       end = std::max(end, tri.done);
       if (__builtin_expect(tracing_, 0)) trace_op(id, kTriangle, tri);
-      const TriangleStepOutcome out = s.stepper.triangle_step(first + i);
-      if (out.suspect && avoidance_in_use_) {
-        const UnitSchedule a = avoidance_op(core, tri.done, now);
+      if (avoidance) {
+        const UnitSchedule a = kBuiltinUnits ? avoidance_op(core, tri.done, now) : call_.avoidance;
         ++cc.avoidance_ops_by_kind[static_cast<int>(s.tr.kind)];
         if (__builtin_expect(tracing_, 0)) trace_op(id, kAvoidance, a);
         end = std::max(end, a.done);
@@ -537,6 +555,7 @@ class Engine final : public CycleEngine, private SourceHost {
   std::vector<CoreBinding> cores_;
   std::vector<L1Cache*> l1s_;         // by core: the built-in L1 (Memory = L1Cache)
   std::vector<uint32_t> free_count_;  // by core: free slots (the dispatcher's view)
+  UnitCall call_;                     // the current step's unit call (PortUnits)
   IdealMemory* ideal_;
   bool avoidance_in_use_;
   // Per kind (0: a leaf's triangles, 1: a node), the modelled address of record `i`: base + stride * i.

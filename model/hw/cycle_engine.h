@@ -1,9 +1,11 @@
 // CycleEngine: the one scheduler that keeps the accelerator's time. It owns the
 // calendar queue of pending events (a busy slot's next step, the ray source)
 // and the slots' ray records and BvhSteppers, and handles events in cycle order
-// (within a cycle in scheduling order), calling the units of the accelerator's
-// modules (hw/accelerator.h) for when each step happens and the datapath's
-// BvhStepper for what it does. It never visits an idle cycle. The Accelerator's
+// (within a cycle in scheduling order), running each slot's BvhStepper, whose
+// units policy asks the accelerator's unit modules (hw/accelerator.h) for the
+// answers and their schedule: inlined datapath calls and the built-in modules'
+// reservation tables when every unit and memory is built-in (BuiltinUnits),
+// the units' interfaces otherwise (PortUnits, hw/port_units.h). It never visits an idle cycle. The Accelerator's
 // SC_METHOD drives it (advance) and keeps SystemC time in step.
 //
 // Steps of a slot (docs/hw-model.md has their timing): the root box at
@@ -29,9 +31,11 @@
 
 namespace vbsim::hw {
 
+class AvoidanceUnit;
+class BoxUnit;
 class Dispatcher;
 class IdealMemory;
-class PipelineUnit;
+class TriangleTester;
 class RaySource;
 class RayTestCore;
 class ResultSink;
@@ -72,12 +76,12 @@ class CycleEngine {
 /// module (called directly) or the interface a replacement implements.
 struct CoreBinding {
   RayTestCore* core;
-  PipelineUnit* box_builtin;
-  PipelineIf* box;
-  PipelineUnit* triangle_builtin;
-  PipelineIf* triangle;
-  PipelineUnit* avoidance_builtin;
-  PipelineIf* avoidance;
+  BoxUnit* box_builtin;
+  BoxUnitIf* box;
+  TriangleTester* triangle_builtin;
+  TriangleTesterIf* triangle;
+  AvoidanceUnit* avoidance_builtin;
+  AvoidanceUnitIf* avoidance;
   MemoryReadIf* memory;
 };
 

@@ -40,7 +40,8 @@ bool list_bindings(const sc_core::sc_object& o, std::string& out) {
 std::string bound_to(const sc_core::sc_object& o) {
   if (const auto* p = dynamic_cast<const sc_core::sc_port_base*>(&o)) {
     std::string out;
-    if (!list_bindings<PipelineIf>(o, out) && !list_bindings<MemoryReadIf>(o, out) &&
+    if (!list_bindings<BoxUnitIf>(o, out) && !list_bindings<TriangleTesterIf>(o, out) &&
+        !list_bindings<AvoidanceUnitIf>(o, out) && !list_bindings<MemoryReadIf>(o, out) &&
         !list_bindings<LineReadIf>(o, out) && !list_bindings<LineFillIf>(o, out) &&
         !list_bindings<ReadDoneIf>(o, out))
       out = owner_of(p->get_interface());

@@ -3,14 +3,15 @@
 // three-half-plane test, or Möller–Trumbore or pbrt-watertight: one triangle
 // per operation, emitting the front/back bit) and the intersection-avoidance
 // unit (one suspect's epsilon tests). Each wraps a reservation table of its
-// `count` pipelines (UnitPipelines) and is reached through PipelineIf
-// (hw/unit_interfaces.h) at its export `target`.
+// `count` pipelines (UnitPipelines) for the schedule and computes its result
+// with the plain-C++ datapath (RayBoxTester, the tester of its kind,
+// avoidance_decide), reached through BoxUnitIf, TriangleTesterIf and
+// AvoidanceUnitIf (hw/unit_interfaces.h) at its export `target`.
 //
-// What the tester and the avoidance unit compute is the datapath's
-// (ThreeHalfPlaneTester and its siblings, avoidance_decide, run by the slots'
-// BvhSteppers); these modules name which datapath unit the core uses and time
-// it. schedule_inline() is the same as schedule() without the virtual call, for
-// the scheduler when the bound unit is one of these.
+// schedule_inline() is the schedule alone, without the virtual call: the
+// scheduler times a built-in unit with it and computes the result with the
+// slot's latched datapath state (BvhStepper's BuiltinUnits), which answers as
+// the module's interface call does (testbench/unit/pipeline_units_test.cpp).
 #pragma once
 #include <cstdint>
 #include <string>
@@ -27,13 +28,11 @@
 
 namespace vbsim::hw {
 
-class PipelineUnit : public sc_core::sc_module, public PipelineIf, public StatProvider {
+/// The timing shared by the three: `count` pipelines of one latency.
+class PipelineUnit : public sc_core::sc_module, public StatProvider {
  public:
-  sc_core::sc_export<PipelineIf> target;
-
   PipelineUnit(sc_core::sc_module_name name, const UnitConfig& config);
 
-  UnitSchedule schedule(uint64_t ready, uint64_t now) final { return schedule_inline(ready, now); }
   UnitSchedule schedule_inline(uint64_t ready, uint64_t now) {
     const uint64_t issue = pipes_.issue(ready, now);
     return {issue, issue + latency_};
@@ -50,18 +49,29 @@ class PipelineUnit : public sc_core::sc_module, public PipelineIf, public StatPr
   UnitPipelines pipes_;
 };
 
-/// Tests both child boxes of one node per operation.
-class BoxUnit final : public PipelineUnit {
+/// Tests both child boxes of one node per operation (the root's box at dispatch).
+class BoxUnit final : public PipelineUnit, public BoxUnitIf {
  public:
-  BoxUnit(sc_core::sc_module_name name, const UnitConfig& config) : PipelineUnit(name, config) {}
+  sc_core::sc_export<BoxUnitIf> target;
+
+  BoxUnit(sc_core::sc_module_name name, const UnitConfig& config);
+  /// RayBoxTester's answer (op.latched, or the ray's own when null).
+  BoxAnswer test_boxes(const BoxOp& op) override;
+  /// The result without the schedule (no pipeline reserved).
+  static BoxAnswer compute(const BoxOp& op);
   const char* unit_kind() const override { return "BoxUnit"; }
 };
 
 /// Tests one triangle per operation with `tester`, emitting the front/back bit.
-class TriangleTester final : public PipelineUnit {
+class TriangleTester final : public PipelineUnit, public TriangleTesterIf {
  public:
-  TriangleTester(sc_core::sc_module_name name, const UnitConfig& config, TesterKind tester)
-      : PipelineUnit(name, config), tester_(tester) {}
+  sc_core::sc_export<TriangleTesterIf> target;
+
+  TriangleTester(sc_core::sc_module_name name, const UnitConfig& config, TesterKind tester);
+  /// The `tester` kind's answer (set up for the operation's ray).
+  TriangleAnswer test_triangle(const TriangleOp& op) override;
+  /// The result without the schedule, with tester kind `kind`.
+  static TriangleAnswer compute(TesterKind kind, const TriangleOp& op);
   const char* unit_kind() const override { return "TriangleTester"; }
   nlohmann::json parameters() const override;
   TesterKind tester() const { return tester_; }
@@ -73,11 +83,14 @@ class TriangleTester final : public PipelineUnit {
 /// Decides one suspect candidate per operation (the patent's normal and
 /// epsilon checks, policy `config.policy`); idle unless the method is
 /// validity-bit with a policy that tests (`in_use`).
-class AvoidanceUnit final : public PipelineUnit {
+class AvoidanceUnit final : public PipelineUnit, public AvoidanceUnitIf {
  public:
+  sc_core::sc_export<AvoidanceUnitIf> target;
+
   AvoidanceUnit(sc_core::sc_module_name name, const UnitConfig& config, const AvoidanceConfig& avoidance,
-                bool in_use)
-      : PipelineUnit(name, config), avoidance_(avoidance), in_use_(in_use) {}
+                bool in_use);
+  /// avoidance_decide() under the operation's configuration.
+  AvoidanceAnswer decide(const AvoidanceOp& op) override;
   const char* unit_kind() const override { return "AvoidanceUnit"; }
   nlohmann::json parameters() const override;
   bool in_use() const { return in_use_; }

@@ -29,13 +29,13 @@ RayTestCore::RayTestCore(sc_core::sc_module_name name, uint32_t index, const HwC
       read_done_target("read_done_target"), index_(index), first_slot_(index * config.slots_per_core),
       slots_(config.slots_per_core), stack_depth_(config.stack_depth) {
   read_done_target.bind(*this);
-  builtin_box_ = bind_unit(box, units.box_unit, "box_unit", index, config, "PipelineIf", box_unit_, replacements_,
+  builtin_box_ = bind_unit(box, units.box_unit, "box_unit", index, config, "BoxUnitIf", box_unit_, replacements_,
                            [&](const char* n) { return std::make_unique<BoxUnit>(n, config.box); });
-  builtin_triangle_ = bind_unit(triangle, units.triangle_tester, "triangle_tester", index, config, "PipelineIf",
+  builtin_triangle_ = bind_unit(triangle, units.triangle_tester, "triangle_tester", index, config, "TriangleTesterIf",
                                 triangle_tester_, replacements_, [&](const char* n) {
                                   return std::make_unique<TriangleTester>(n, for_tester(config, tester).triangle, tester);
                                 });
-  builtin_avoidance_ = bind_unit(avoidance, units.avoidance_unit, "avoidance_unit", index, config, "PipelineIf",
+  builtin_avoidance_ = bind_unit(avoidance, units.avoidance_unit, "avoidance_unit", index, config, "AvoidanceUnitIf",
                                  avoidance_unit_, replacements_, [&](const char* n) {
                                    return std::make_unique<AvoidanceUnit>(n, config.avoidance, avoidance_config,
                                                                           avoidance_in_use);

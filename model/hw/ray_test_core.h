@@ -26,7 +26,9 @@ namespace vbsim::hw {
 
 class RayTestCore final : public sc_core::sc_module, public ReadDoneIf, public StatProvider {
  public:
-  sc_core::sc_port<PipelineIf> box, triangle, avoidance;
+  sc_core::sc_port<BoxUnitIf> box;
+  sc_core::sc_port<TriangleTesterIf> triangle;
+  sc_core::sc_port<AvoidanceUnitIf> avoidance;
   sc_core::sc_port<MemoryReadIf> memory;
   sc_core::sc_export<ReadDoneIf> read_done_target;  ///< where a pending read's answer arrives
 
@@ -40,8 +42,8 @@ class RayTestCore final : public sc_core::sc_module, public ReadDoneIf, public S
   uint32_t slots() const { return slots_; }
 
   /// The built-in units bound to the ports, or null where a replacement is bound.
-  PipelineUnit* builtin_box() const { return builtin_box_; }
-  PipelineUnit* builtin_triangle() const { return builtin_triangle_; }
+  BoxUnit* builtin_box() const { return builtin_box_; }
+  TriangleTester* builtin_triangle() const { return builtin_triangle_; }
   AvoidanceUnit* builtin_avoidance() const { return builtin_avoidance_; }
   L1Cache* l1() const { return l1_; }  ///< the built-in L1, or null
 
@@ -58,8 +60,8 @@ class RayTestCore final : public sc_core::sc_module, public ReadDoneIf, public S
  private:
   uint32_t index_, first_slot_, slots_, stack_depth_;
   std::vector<std::unique_ptr<sc_core::sc_module>> replacements_;
-  PipelineUnit* builtin_box_ = nullptr;
-  PipelineUnit* builtin_triangle_ = nullptr;
+  BoxUnit* builtin_box_ = nullptr;
+  TriangleTester* builtin_triangle_ = nullptr;
   AvoidanceUnit* builtin_avoidance_ = nullptr;
   L1Cache* l1_ = nullptr;
   std::unique_ptr<BoxUnit> box_unit_;

@@ -8,35 +8,63 @@
 // units while handling the event at cycle `now`; calls carry that `now`, which
 // never decreases from one call to the next of one unit.
 //
-// What a unit decides is *when*: the answers (which triangle a ray hits, what
-// the avoidance unit rejects) are the plain-C++ datapath's (BvhStepper with its
-// tester and candidate filter), so a replaced unit changes timing, never hits.
+// When, in SystemC time: the scheduler runs loosely timed, a quantum of
+// Q = sim.quantum_cycles cycles at a time. An activation at SystemC time T
+// (cycle c = (T - start) / clock period) handles the events of cycles
+// [c, c + Q) and sleeps until the next, so a call carrying `now` happens while
+// sc_time_stamp() is at cycle c with
+//
+//     0 <= now - c < Q        i.e. c in [now - Q + 1, now]
+//
+// (a unit may be asked up to Q - 1 cycles ahead of SystemC time, never behind
+// it; Q = 1 keeps every call at its own cycle). With an approximately timed
+// memory and requests outstanding the bound is tighter (the target's
+// lookahead). Results never depend on Q; a unit that reads SystemC time or
+// other modules' signals must allow for it (testbench/module/unit_time_test.cpp
+// records sc_time_stamp() in a unit's calls and checks the bound).
+//
+// What a unit decides is *when* and *what*: the box unit, the triangle tester
+// and the avoidance unit each take an operation carrying its payload (the
+// ray, the node or triangle, the candidate: hw/unit_operations.h) and answer
+// its schedule with its result, which the slot's BvhStepper acts on (which
+// child to descend into, whether a candidate hit shortens the interval). The
+// built-in modules (hw/pipeline_units.h) compute the result with the plain-C++
+// datapath (RayBoxTester, the configured triangle tester, avoidance_decide),
+// so with them functional and cycle-level runs give identical hits; a
+// replacement that computes otherwise (hw/examples/reduced_precision_units.h)
+// changes them.
 #pragma once
 #include <cstdint>
 
 #include <systemc>
 
 #include "hw/pending_cycle.h"
+#include "hw/unit_operations.h"
 #include "replay/functional_replayer.h"
 #include "replay/ray_emission.h"
 #include "trace/trace_record.h"
 
 namespace vbsim::hw {
 
-/// When one operation of a pipelined unit issues and when its result is there.
-struct UnitSchedule {
-  uint64_t issue;  ///< cycle the operation enters a pipeline (>= its ready cycle)
-  uint64_t done;   ///< cycle its result is available (>= issue)
+/// The box unit: the root's box of a ray at dispatch, then both child boxes of
+/// each node the ray's slot fetches.
+class BoxUnitIf : public virtual sc_core::sc_interface {
+ public:
+  virtual BoxAnswer test_boxes(const BoxOp& op) = 0;
 };
 
-/// A unit of a ray-test core that times one kind of operation: the box unit
-/// (both child boxes of a node), the three-half-plane tester (one triangle,
-/// front/back bit), the avoidance unit (one suspect's epsilon tests).
-class PipelineIf : public virtual sc_core::sc_interface {
+/// The triangle tester: one triangle per operation, with the front/back bit.
+class TriangleTesterIf : public virtual sc_core::sc_interface {
  public:
-  /// An operation whose operands are ready at `ready` (>= now), requested while
-  /// handling the event at `now`.
-  virtual UnitSchedule schedule(uint64_t ready, uint64_t now) = 0;
+  virtual TriangleAnswer test_triangle(const TriangleOp& op) = 0;
+};
+
+/// The intersection-avoidance unit: one suspect candidate per operation
+/// (asked only when the method is validity-bit with a policy that tests;
+/// policy sign-only rejects every suspect on the bit alone, without the unit).
+class AvoidanceUnitIf : public virtual sc_core::sc_interface {
+ public:
+  virtual AvoidanceAnswer decide(const AvoidanceOp& op) = 0;
 };
 
 /// A core's reads of the BVH (nodes, triangles, its slots' stack spill areas),

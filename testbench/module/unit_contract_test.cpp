@@ -51,10 +51,27 @@ class InstantMemory final : public sc_core::sc_module, public MemoryReadIf {
 };
 
 /// Issues every operation one cycle before its operands are ready.
-class HastyTester final : public sc_core::sc_module, public PipelineIf {
+class HastyTester final : public sc_core::sc_module, public TriangleTesterIf {
  public:
   explicit HastyTester(sc_core::sc_module_name n) : sc_core::sc_module(n) {}
-  UnitSchedule schedule(uint64_t ready, uint64_t) override { return {ready - 1, ready + 10}; }
+  TriangleAnswer test_triangle(const TriangleOp& op) override {
+    TriangleAnswer a;
+    a.schedule = {op.ready - 1, op.ready + 10};
+    return a;
+  }
+};
+
+/// The datapath's answer on time, but a candidate at the interval's end (t = tmax).
+class OutOfIntervalTester final : public sc_core::sc_module, public TriangleTesterIf {
+ public:
+  explicit OutOfIntervalTester(sc_core::sc_module_name n) : sc_core::sc_module(n) {}
+  TriangleAnswer test_triangle(const TriangleOp& op) override {
+    TriangleAnswer a;
+    a.schedule = {op.ready, op.ready + 1};
+    a.candidate = true;
+    a.hit.t = op.tmax;
+    return a;
+  }
 };
 
 }  // namespace
@@ -150,11 +167,24 @@ TEST_CASE("a pipeline unit of one's own issuing before its operands stops the ru
                         Contains("must answer issue >= ready"));
 }
 
+TEST_CASE("a triangle tester of one's own answering a candidate outside the interval stops the run, named",
+          "[module][contract]") {
+  const ThreeFloors f;
+  AcceleratorUnits units;
+  units.triangle_tester = [](const char* name, uint32_t, const HwConfig&) {
+    return std::make_unique<OutOfIntervalTester>(name);
+  };
+  AcceleratorHarness h(f.scene, f.bvh, one_slot(1, 5, 11, 7), ReplayOptions{}, units);
+  CHECK_THROWS_WITH(h.run({down_from(1, 1.0f)}),
+                    Contains("accelerator.core_0.triangle_tester: triangle") &&
+                        Contains("outside the ray's interval"));
+}
+
 TEST_CASE("a built-in pipeline asked for an operation ready in the past names itself", "[module][contract]") {
   const SimulationContext context;
   BoxUnit box("my_box", UnitConfig{1, 8, 1});
-  box.schedule(1000, 1000);  // the current event moves to cycle 1000
-  CHECK_THROWS_WITH(box.schedule(10, 1000), Contains("my_box: an operation ready at cycle"));
+  box.schedule_inline(1000, 1000);  // the current event moves to cycle 1000
+  CHECK_THROWS_WITH(box.schedule_inline(10, 1000), Contains("my_box: an operation ready at cycle"));
 }
 
 TEST_CASE("duplicate ray ids from a feed of one's own stop the run, naming the position", "[module][contract]") {

@@ -20,14 +20,16 @@ namespace {
 /// A box unit that holds its one datapath for the whole latency of an
 /// operation (no pipelining): an operation issues when both its operands and
 /// the unit are free.
-class UnpipelinedBoxUnit final : public sc_core::sc_module, public PipelineIf {
+class UnpipelinedBoxUnit final : public sc_core::sc_module, public BoxUnitIf {
  public:
   UnpipelinedBoxUnit(sc_core::sc_module_name n, uint32_t latency) : sc_core::sc_module(n), latency_(latency) {}
-  UnitSchedule schedule(uint64_t ready, uint64_t) override {
-    const uint64_t issue = std::max(ready, free_);
+  BoxAnswer test_boxes(const BoxOp& op) override {
+    BoxAnswer a = BoxUnit::compute(op);  // the datapath's answer
+    const uint64_t issue = std::max(op.ready, free_);
     free_ = issue + latency_;
     ++ops;
-    return {issue, issue + latency_};
+    a.schedule = {issue, issue + latency_};
+    return a;
   }
   uint64_t ops = 0;
 
