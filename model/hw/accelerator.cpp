@@ -97,6 +97,9 @@ Accelerator::Accelerator(sc_core::sc_module_name name, const HwConfig& config, c
         l1->next.bind(l2_->target);
         l2_->fill_out.bind(l1->fill_target);
         l1->connect_fast(l2_.get());
+      } else if (L2ClientIf* client = c.l2_client()) {  // a replacement L1 that reaches the L2
+        client->next_level().bind(l2_->target);
+        l2_->fill_out.bind(client->fill_target());
       } else {
         l2_->fill_out.bind(*no_fill_);
       }

@@ -43,6 +43,8 @@ RayTestCore::RayTestCore(sc_core::sc_module_name name, uint32_t index, const HwC
   if (units.l1_cache) {
     replacements_.push_back(units.l1_cache("l1_cache", index, config));
     memory.bind(replacement_as<MemoryReadIf>(*replacements_.back(), "MemoryReadIf"));
+    l2_client_ = dynamic_cast<L2ClientIf*>(replacements_.back().get());
+    if (l2_client_) l2_client_->read_done().bind(read_done_target);
   } else if (with_l1) {
     l1_cache_ = std::make_unique<L1Cache>("l1_cache", config.memory.l1, index, first_slot_, slots_);
     l1_ = l1_cache_.get();

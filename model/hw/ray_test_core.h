@@ -46,6 +46,8 @@ class RayTestCore final : public sc_core::sc_module, public ReadDoneIf, public S
   TriangleTester* builtin_triangle() const { return builtin_triangle_; }
   AvoidanceUnit* builtin_avoidance() const { return builtin_avoidance_; }
   L1Cache* l1() const { return l1_; }  ///< the built-in L1, or null
+  /// A replacement L1 that reaches the L2 (L2ClientIf), or null.
+  L2ClientIf* l2_client() const { return l2_client_; }
 
   /// Pending reads' answers go to `resume(slot, ready)` (the scheduler).
   void set_resume(std::function<void(uint32_t, uint64_t)> resume) { resume_ = std::move(resume); }
@@ -64,6 +66,7 @@ class RayTestCore final : public sc_core::sc_module, public ReadDoneIf, public S
   TriangleTester* builtin_triangle_ = nullptr;
   AvoidanceUnit* builtin_avoidance_ = nullptr;
   L1Cache* l1_ = nullptr;
+  L2ClientIf* l2_client_ = nullptr;
   std::unique_ptr<BoxUnit> box_unit_;
   std::unique_ptr<TriangleTester> triangle_tester_;
   std::unique_ptr<AvoidanceUnit> avoidance_unit_;

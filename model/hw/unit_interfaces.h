@@ -101,6 +101,23 @@ class LineFillIf : public virtual sc_core::sc_interface {
   virtual void line_filled(uint64_t line, uint64_t fill) = 0;
 };
 
+/// What a replacement L1 (AcceleratorUnits::l1_cache) implements besides
+/// MemoryReadIf to be wired as the built-in L1 is: with the cache hierarchy,
+/// the accelerator binds next_level() to the shared L2's LineReadIf (misses go
+/// on to the L2) and gives the L2 fill_target() for the lines it answers
+/// kPendingCycle; the core binds read_done() to its ReadDoneIf (the answers to
+/// the core's reads the replacement answered kPendingCycle). With an ideal
+/// memory there is no L2 and next_level() stays unbound (declare it
+/// sc_port<LineReadIf, 1, SC_ZERO_OR_MORE_BOUND> to allow that). A replacement
+/// without it is the core's whole memory path (it does not reach the L2).
+class L2ClientIf {
+ public:
+  virtual ~L2ClientIf() = default;
+  virtual sc_core::sc_port_b<LineReadIf>& next_level() = 0;
+  virtual LineFillIf& fill_target() = 0;
+  virtual sc_core::sc_port_b<ReadDoneIf>& read_done() = 0;
+};
+
 /// The dispatcher: which core takes the next ray.
 class DispatchIf : public virtual sc_core::sc_interface {
  public:
