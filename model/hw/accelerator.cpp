@@ -66,7 +66,8 @@ void check_builtin_lookahead(const MemoryConfig& m) {
 Accelerator::Accelerator(sc_core::sc_module_name name, const HwConfig& config, const Scene& scene, const Bvh& bvh,
                          const ReplayOptions& options, const AcceleratorUnits& units)
     : AcceleratorChecks(config, bvh), sc_core::sc_module(name), config_(for_tester(config, options.tester)), bvh_(bvh), replayer_(scene, bvh, options),
-      clock_(config.clock_mhz), at_(!config.memory.ideal && config.memory.tlm == TlmStyle::ApproximatelyTimed),
+      clock_(config.clock_mhz),
+      at_(!config.memory.ideal && !units.l2_cache && config.memory.tlm == TlmStyle::ApproximatelyTimed),
       avoidance_in_use_(options.method.validity_bit && options.method.avoidance.policy != AvoidancePolicy::SignOnly),
       cores_("core") {
   if (!units.external_memory) check_builtin_lookahead(config.memory);
@@ -88,6 +89,24 @@ Accelerator::Accelerator(sc_core::sc_module_name name, const HwConfig& config, c
     ideal_ = std::make_unique<IdealMemory>("memory", config.memory.ideal_latency);
     for (RayTestCore& c : cores_)
       if (!units.l1_cache) c.memory.bind(ideal_->target);
+  } else if (units.l2_cache) {
+    if (units.external_memory)
+      throw std::invalid_argument("external_memory: a replaced L2 has no memory socket (the memory behind it is its own)");
+    l2_replacement_ = units.l2_cache("l2_cache", config);
+    LineReadIf& l2 = replacement_as<LineReadIf>(*l2_replacement_, "LineReadIf");
+    auto* fills = dynamic_cast<L2ReplacementIf*>(l2_replacement_.get());
+    no_fill_ = std::make_unique<NoLineFill>();
+    for (RayTestCore& c : cores_) {
+      LineFillIf* fill = no_fill_.get();
+      if (L1Cache* l1 = c.l1()) {
+        l1->next.bind(l2);
+        fill = &static_cast<LineFillIf&>(*l1);
+      } else if (L2ClientIf* client = c.l2_client()) {
+        client->next_level().bind(l2);
+        fill = &client->fill_target();
+      }
+      if (fills) fills->fill_out().bind(*fill);
+    }
   } else {
     l2_ = std::make_unique<L2Cache>("l2_cache", config.memory.l2, clock_, config.memory.tlm,
                                     config.memory.at_lookahead_cycles);
@@ -127,7 +146,9 @@ Accelerator::Accelerator(sc_core::sc_module_name name, const HwConfig& config, c
 Accelerator::~Accelerator() = default;
 
 tlm::tlm_initiator_socket<>& Accelerator::memory_socket() {
-  if (!memory_socket_) throw std::logic_error(std::string(name()) + ": an ideal memory has no memory socket");
+  if (!memory_socket_)
+    throw std::logic_error(std::string(name()) +
+                           (l2_replacement_ ? ": a replaced L2 has no memory socket" : ": an ideal memory has no memory socket"));
   return *memory_socket_;
 }
 
@@ -408,9 +429,14 @@ nlohmann::json Accelerator::memory_stats() const {
             {"busy_cycles", dram_->channel().busy_cycles()},
             {"bytes_per_cycle", bytes_per_cycle},
             {"bandwidth_use", bytes_per_cycle / config_.memory.dram_bytes_per_cycle}};
-  } else {
+  } else if (l2_) {
     dram = {{"target", "external"}, {"reads", l2_->dram_requests()}};
+  } else {
+    dram = {{"target", "behind the replaced L2"}, {"reads", 0}};  // the replacement's own business
   }
+  // A replaced L2 counts nothing here (its statistics are its own).
+  nlohmann::json l2 = level_json(l2_ ? l2_->counters() : LevelCounters{});
+  if (!l2_) l2["replaced"] = true;
   const DramCounters none;
   const DramCounters& d = dram_ ? dram_->channel().counters() : none;
   return {
@@ -420,11 +446,11 @@ nlohmann::json Accelerator::memory_stats() const {
       {"line_requests", l1_sum.accesses},  // every line a read spans is one L1 access
       {"span_cycles", span},
       {"l1", std::move(l1)},
-      {"l2", level_json(l2_->counters())},
+      {"l2", std::move(l2)},
       {"dram", std::move(dram)},
       {"stall_cycles",
        {{"l1_mshr_full", l1_sum.mshr_stall_cycles},
-        {"l2_mshr_full", l2_->counters().mshr_stall_cycles},
+        {"l2_mshr_full", l2_ ? l2_->counters().mshr_stall_cycles : 0},
         {"dram_outstanding_full", d.outstanding_stall_cycles},
         {"dram_bandwidth", d.bandwidth_stall_cycles}}},
   };
@@ -515,7 +541,10 @@ nlohmann::json Accelerator::parameters() const {
           {"clock_mhz", config_.clock_mhz},
           {"cores", config_.cores},
           {"slots_per_core", config_.slots_per_core},
-          {"memory", m.ideal ? "ideal" : dram_ ? "hierarchy, built-in DRAM" : "hierarchy, external target"},
+          {"memory", m.ideal                ? "ideal"
+                     : l2_replacement_    ? "hierarchy, replaced L2"
+                     : dram_              ? "hierarchy, built-in DRAM"
+                                          : "hierarchy, external target"},
           {"tlm", m.ideal ? "none" : tlm_style_name(m.tlm)},
           {"quantum_cycles", config_.quantum_cycles},
           {"method", replayer_.options().method.name()},

@@ -151,7 +151,8 @@ class Accelerator final : private AcceleratorChecks, public sc_core::sc_module, 
   RayTestCore& core(size_t i) { return cores_[i]; }
   size_t cores() const { return cores_.size(); }
   IdealMemory* ideal_memory() { return ideal_.get(); }  ///< null with the caches
-  L2Cache* l2() { return l2_.get(); }                    ///< null with an ideal memory
+  L2Cache* l2() { return l2_.get(); }                    ///< null with an ideal memory or a replaced L2
+  sc_core::sc_module* l2_replacement() { return l2_replacement_.get(); }  ///< the replacement L2, or null
   const HwConfig& config() const { return config_; }
   const CycleEngine* engine() const { return engine_.get(); }
 
@@ -184,6 +185,7 @@ class Accelerator final : private AcceleratorChecks, public sc_core::sc_module, 
   sc_core::sc_vector<RayTestCore> cores_;
   std::unique_ptr<IdealMemory> ideal_;
   std::unique_ptr<L2Cache> l2_;
+  std::unique_ptr<sc_core::sc_module> l2_replacement_;  // a replacement L2 (then l2_ is null)
   std::unique_ptr<tlm::tlm_initiator_socket<>> memory_socket_;
   std::unique_ptr<Dram> dram_;
   std::unique_ptr<ResultSink> sink_;

@@ -10,6 +10,10 @@
 //   l1_cache         MemoryReadIf      (in each core: the core's whole memory path; it does not
 //                                       reach the L2)
 //   dispatcher       DispatchIf
+//   l2_cache         LineReadIf        the shared L2 and the memory behind it (the cores' L1s, and
+//                                       replacement L1s implementing L2ClientIf, are bound to it;
+//                                       L2ReplacementIf: its answers to pending lines); no TLM
+//                                       socket, no built-in DRAM then; memory.ideal: not built
 //
 // The memory behind the L2 is replaced at the TLM-2.0 socket instead
 // (Accelerator::memory_socket with external_memory set). A replaced unit
@@ -35,7 +39,7 @@ struct AcceleratorUnits {
   using UnitFactory = std::function<std::unique_ptr<sc_core::sc_module>(const char* name, const HwConfig& config)>;
 
   CoreUnitFactory box_unit, triangle_tester, avoidance_unit, l1_cache;
-  UnitFactory dispatcher;
+  UnitFactory dispatcher, l2_cache;
   /// Leave the L2's TLM-2.0 socket (Accelerator::memory_socket) for the user to
   /// bind to their own memory target instead of the built-in Dram.
   bool external_memory = false;

@@ -1,8 +1,9 @@
-// A replacement L1 that implements L2ClientIf reaches the shared L2: the
-// accelerator binds its port to the L2, the L2 answers its pending lines to
-// it, and the core takes its pending reads' answers. Here an L1 without a
-// cache sends every line a read spans to the L2: the L2 sees exactly its
-// requests, and the rays' hits stay the functional replay's.
+// Replacing the memory levels. A replacement L1 that implements L2ClientIf
+// reaches the shared L2: the accelerator binds its port to the L2, the L2
+// answers its pending lines to it, and the core takes its pending reads'
+// answers. Here an L1 without a cache sends every line a read spans to the
+// L2: the L2 sees exactly its requests, and the rays' hits stay the
+// functional replay's. A replacement L2 takes every built-in L1's misses.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -127,4 +128,66 @@ TEST_CASE("a replacement L1 that forwards every line to the L2 reaches it, and t
   // With no L1 to filter them the L2 sees more requests than the built-in L1s' misses.
   CHECK(l2_accesses > builtin.hw["memory"]["port"]["l2"]["accesses"].get<uint64_t>());
   CHECK(forwarded.counters.cycles > 0);
+}
+
+namespace {
+
+/// The L2 and everything behind it: every line `latency` cycles after its request.
+class FixedLatencyL2 final : public sc_core::sc_module, public LineReadIf {
+ public:
+  /// `requests` (by core) outlives it.
+  FixedLatencyL2(sc_core::sc_module_name n, std::vector<uint64_t>& requests, uint32_t latency)
+      : sc_core::sc_module(n), requests_(requests), latency_(latency) {}
+  uint64_t read_line(uint64_t, uint64_t t, uint32_t core) override {
+    ++requests_.at(core);
+    return t + latency_;
+  }
+
+ private:
+  std::vector<uint64_t>& requests_;
+  uint32_t latency_;
+};
+
+}  // namespace
+
+TEST_CASE("a replacement L2 bound in place of the built-in one takes every L1 miss of every core",
+          "[module][swap][memory]") {
+  const std::string path = std::string(VBSIM_SOURCE_DIR) + "/traces/bunny/paths.jsonl";
+  ReplayOptions opt;
+  std::string err;
+  REQUIRE(parse_method("validity-bit", opt.method, err));
+  const HwConfig cfg = load_preset("small", "test");
+  auto src = open_trace(path);
+  const SceneAndBvh sb = load_trace_scene(src->header());
+  src->set_triangle_count(sb.scene.size());
+  std::vector<int32_t> want;
+  {
+    FunctionalReplayer replayer(sb.scene, sb.bvh, opt);
+    auto f = open_trace(path);
+    f->set_triangle_count(sb.scene.size());
+    TraceRay tr;
+    while (f->next(tr)) want.push_back(replayer.replay(tr).answer);
+  }
+  std::vector<uint64_t> requests(cfg.cores, 0);
+  CycleRunOptions options;
+  options.units.l2_cache = [&requests](const char* name, const HwConfig&) {
+    return std::make_unique<FixedLatencyL2>(name, requests, 40);
+  };
+  std::vector<int32_t> got(want.size(), -2);
+  const RayResultSink sink = [&](const TraceRay&, const RayOutcome& out, uint64_t, uint64_t index) {
+    got.at(index) = out.answer;
+  };
+  const CycleRunResult run =
+      run_cycle_replay([&](TraceRay& ray) { return src->next(ray); }, sb.scene, sb.bvh, opt, cfg, sink, options);
+  CHECK(got == want);
+  const nlohmann::json& mem = run.hw["memory"]["port"];
+  // Each core's L1 misses, and nothing else, reached the replacement.
+  for (uint32_t c = 0; c < cfg.cores; ++c) {
+    INFO("core " << c);
+    CHECK(requests[c] > 0);
+    CHECK(requests[c] == mem["l1"]["per_core"][c]["misses"].get<uint64_t>());
+  }
+  CHECK(mem["l2"]["replaced"] == true);
+  CHECK(mem["l2"]["accesses"] == 0);
+  CHECK(run.counters.cycles > 0);
 }
