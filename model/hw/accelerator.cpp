@@ -134,7 +134,13 @@ Accelerator::Accelerator(sc_core::sc_module_name name, const HwConfig& config, c
       limit_ = std::min(limit_, send + l2_->lookahead_cycles());  // a response may fall at send + lookahead
     });
   }
-  sink_ = std::make_unique<ResultSink>("result_sink", config, replayer_);
+  if (units.result_sink) {
+    sink_replacement_ = units.result_sink("result_sink", config);
+    sink_ = std::make_unique<ResultSink>("result_accounting", config, replayer_);
+    sink_->forward.bind(replacement_as<ResultSinkIf>(*sink_replacement_, "ResultSinkIf"));
+  } else {
+    sink_ = std::make_unique<ResultSink>("result_sink", config, replayer_);
+  }
   for (RayTestCore& c : cores_)
     c.set_resume([this](uint32_t slot, uint64_t ready) { engine_->resume(slot, ready); });
 

@@ -189,6 +189,7 @@ class Accelerator final : private AcceleratorChecks, public sc_core::sc_module, 
   std::unique_ptr<tlm::tlm_initiator_socket<>> memory_socket_;
   std::unique_ptr<Dram> dram_;
   std::unique_ptr<ResultSink> sink_;
+  std::unique_ptr<sc_core::sc_module> sink_replacement_;  // a replacement result sink, or null
   std::unique_ptr<LineFillIf> no_fill_;  // the L2's answer path for cores whose L1 was replaced
 
   MemoryClock memory_clock_;

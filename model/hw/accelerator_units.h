@@ -14,6 +14,12 @@
 //                                       replacement L1s implementing L2ClientIf, are bound to it;
 //                                       L2ReplacementIf: its answers to pending lines); no TLM
 //                                       socket, no built-in DRAM then; memory.ideal: not built
+//   result_sink      ResultSinkIf      where finished rays go (bound to the built-in sink's port
+//                                       `forward`; the built-in one stays as result_accounting for
+//                                       the run's cycles and latencies; verdicts are the replacement's)
+//
+// The ray source is not replaceable: the scheduler drives it through
+// SourceHost (hw/ray_source.h), an interface of the scheduler's own.
 //
 // The memory behind the L2 is replaced at the TLM-2.0 socket instead
 // (Accelerator::memory_socket with external_memory set). A replaced unit
@@ -39,7 +45,7 @@ struct AcceleratorUnits {
   using UnitFactory = std::function<std::unique_ptr<sc_core::sc_module>(const char* name, const HwConfig& config)>;
 
   CoreUnitFactory box_unit, triangle_tester, avoidance_unit, l1_cache;
-  UnitFactory dispatcher, l2_cache;
+  UnitFactory dispatcher, l2_cache, result_sink;
   /// Leave the L2's TLM-2.0 socket (Accelerator::memory_socket) for the user to
   /// bind to their own memory target instead of the built-in Dram.
   bool external_memory = false;

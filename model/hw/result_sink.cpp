@@ -5,7 +5,7 @@
 namespace vbsim::hw {
 
 ResultSink::ResultSink(sc_core::sc_module_name name, const HwConfig& config, FunctionalReplayer& replayer)
-    : sc_core::sc_module(name), target("target"), replayer_(replayer), bucket_cycles_(config.latency_bucket_cycles) {
+    : sc_core::sc_module(name), target("target"), forward("forward"), replayer_(replayer), bucket_cycles_(config.latency_bucket_cycles) {
   target.bind(*this);
   counters_.latency_histogram.assign(config.latency_buckets, 0);
   declare_stat("rays", "rays", "rays finished", counters_.rays);
@@ -19,14 +19,20 @@ ResultSink::ResultSink(sc_core::sc_module_name name, const HwConfig& config, Fun
                [this] { return nlohmann::json(counters_.latency_histogram); });
 }
 
+void ResultSink::start_of_simulation() { forward_if_ = forward.size() ? forward[0] : nullptr; }
+
 nlohmann::json ResultSink::parameters() const {
   return {{"latency_bucket_cycles", bucket_cycles_}, {"latency_buckets", counters_.latency_histogram.size()}};
 }
 
 void ResultSink::ray_done(const TraceRay& tr, const EmittedRay& er, const Hit& hit, uint64_t rejected,
                           uint64_t dispatched, uint64_t now, uint64_t trace_index) {
-  const RayOutcome out = replayer_.conclude(tr, er, hit, rejected);
-  if (callback_) callback_(tr, out, now, trace_index);
+  if (forward_if_) {
+    forward_if_->ray_done(tr, er, hit, rejected, dispatched, now, trace_index);
+  } else {
+    const RayOutcome out = replayer_.conclude(tr, er, hit, rejected);
+    if (callback_) callback_(tr, out, now, trace_index);
+  }
   SinkCounters& c = counters_;
   const uint64_t latency = now - dispatched;
   c.latency_sum += latency;

@@ -3,6 +3,13 @@
 // verdict against the trace's exact answer, the per-kind statistics), hands the
 // outcome to the user's callback (the hits file, a test) and keeps the per-ray
 // latency (dispatch to result) and its histogram.
+//
+// Replaced (AcceleratorUnits::result_sink): the replacement, bound to the
+// port `forward`, receives every finished ray in place of the conclusion and
+// the callback (the run's verdicts and per-kind statistics are then its own
+// business); this module stays, as `result_accounting`, for the run's
+// accounting (rays finished, last cycle, latencies), which the accelerator's
+// completion and statistics read.
 #pragma once
 #include <cstdint>
 
@@ -19,6 +26,8 @@ namespace vbsim::hw {
 class ResultSink final : public sc_core::sc_module, public ResultSinkIf, public StatProvider {
  public:
   sc_core::sc_export<ResultSinkIf> target;
+  /// A replacement sink, when bound: receives every ray in place of the conclusion.
+  sc_core::sc_port<ResultSinkIf, 1, sc_core::SC_ZERO_OR_MORE_BOUND> forward;
 
   /// `replayer` outlives the sink.
   ResultSink(sc_core::sc_module_name name, const HwConfig& config, FunctionalReplayer& replayer);
@@ -32,7 +41,10 @@ class ResultSink final : public sc_core::sc_module, public ResultSinkIf, public 
   nlohmann::json parameters() const override;
 
  private:
+  void start_of_simulation() override;
+
   FunctionalReplayer& replayer_;
+  ResultSinkIf* forward_if_ = nullptr;  // forward's interface, once bound
   RayResultSink callback_;
   uint32_t bucket_cycles_;
   SinkCounters counters_;

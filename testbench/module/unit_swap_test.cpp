@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <map>
 #include <memory>
 
 #include "accelerator_harness.h"
@@ -135,4 +136,47 @@ TEST_CASE("an L1 replaced by a fixed-latency memory times every read alike", "[m
   CHECK(h.finished.at(1).prim == 0);
   CHECK(h.finished.at(1).cycle == 1 + 5 + 14 + 14 + 20);
   CHECK(h.accelerator().l2()->dram_requests() == 0);
+}
+
+namespace {
+
+/// Where finished rays go: their hit and finish cycle, by id.
+class RecordingSink final : public sc_core::sc_module, public ResultSinkIf {
+ public:
+  RecordingSink(sc_core::sc_module_name n, std::map<int64_t, Finished>& out) : sc_core::sc_module(n), out_(out) {}
+  void ray_done(const TraceRay& tr, const EmittedRay&, const Hit& hit, uint64_t, uint64_t, uint64_t now,
+                uint64_t) override {
+    out_[tr.id] = {hit.prim, now};
+  }
+
+ private:
+  std::map<int64_t, Finished>& out_;
+};
+
+}  // namespace
+
+TEST_CASE("a result sink of one's own receives every finished ray at the built-in sink's cycle", "[module][swap]") {
+  const ThreeFloors f;
+  const HwConfig cfg = one_slot(3, 5, 11, 7);
+  AcceleratorHarness builtin(f.scene, f.bvh, cfg, ReplayOptions{});
+  builtin.run({down_from(1, 1.0f), up_from(2), down_from(3, 0.5f)});
+  std::map<int64_t, Finished> seen;
+  AcceleratorUnits units;
+  units.result_sink = [&seen](const char* name, const HwConfig&) { return std::make_unique<RecordingSink>(name, seen); };
+  AcceleratorHarness h(f.scene, f.bvh, cfg, ReplayOptions{}, units);
+  h.run({down_from(1, 1.0f), up_from(2), down_from(3, 0.5f)});
+  REQUIRE(seen.size() == 3);
+  CHECK(h.finished.empty());  // the replacement took the rays in place of the conclusion and its callback
+  for (const int64_t id : {1, 2, 3}) {
+    CHECK(seen.at(id).prim == builtin.finished.at(id).prim);
+    CHECK(seen.at(id).cycle == builtin.finished.at(id).cycle);
+  }
+  CHECK(seen.at(1).prim == 0);   // down onto the top floor
+  CHECK(seen.at(2).prim == -1);  // up: a miss
+  // The accounting stays: the run's cycles are the last ray's finish.
+  CHECK(h.accelerator().chip_counters().cycles == builtin.accelerator().chip_counters().cycles);
+  CHECK(h.accelerator().chip_counters().rays == 3);
+  const std::string tree = hierarchy_text(h.accelerator());
+  CHECK_THAT(tree, Catch::Matchers::Contains("result_sink  [RecordingSink]"));
+  CHECK_THAT(tree, Catch::Matchers::Contains("result_accounting  [ResultSink]"));
 }
