@@ -10,10 +10,11 @@
 //       avoidance_unit            AvoidanceUnit
 //       l1_cache                  L1Cache
 //     l2_cache                  L2Cache, whose misses leave through a TLM-2.0 initiator socket
+//                               (or a replacement LineReadIf, the L2 and its memory: no socket, no dram)
 //     memory_socket             (hierarchical) to
 //     dram                      Dram, the built-in TLM-2.0 target (absent with external_memory)
 //     memory                    IdealMemory in place of the caches (memory.ideal)
-//     result_sink               ResultSink
+//     result_sink               ResultSink (replaced: the replacement, and ResultSink as result_accounting)
 //
 // Time: one SC_METHOD (activate) runs the one scheduler (CycleEngine). An
 // activation at cycle c handles every event of [c, c + sim.quantum_cycles) and

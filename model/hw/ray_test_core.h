@@ -3,7 +3,8 @@
 // the intersection-avoidance unit and its L1 cache (or none: an ideal memory is
 // bound to its memory port). It reaches them through its ports `box`,
 // `triangle`, `avoidance` and `memory`, so another module can be bound instead
-// (AcceleratorUnits). Its ray slots are the accelerator-wide slot ids
+// (AcceleratorUnits); a replacement L1 implementing L2ClientIf has its
+// read_done() port bound to the core's `read_done_target`. Its ray slots are the accelerator-wide slot ids
 // [first_slot(), first_slot() + slots()); each slot holds one ray record (the
 // datapath's Ray with its parent sign bit) and its BvhStepper, kept with the
 // other cores' slots in one array by the scheduler for the host's caches.

@@ -1,7 +1,8 @@
 // Units of the accelerator replaced by modules written here, bound through the
-// same interfaces: an unpipelined box unit, a dispatcher that fills one core
-// first, and an L1 replaced by a fixed-latency memory. Cycles computed by hand;
-// the hits stay the datapath's.
+// same interfaces: an unpipelined box unit (answering the datapath's result), a
+// dispatcher that fills one core first, an L1 replaced by a fixed-latency
+// memory and a result sink of one's own. Cycles computed by hand; the hits stay
+// the datapath's.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
