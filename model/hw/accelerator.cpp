@@ -93,19 +93,12 @@ Accelerator::Accelerator(sc_core::sc_module_name name, const HwConfig& config, c
     if (units.external_memory)
       throw std::invalid_argument("external_memory: a replaced L2 has no memory socket (the memory behind it is its own)");
     l2_replacement_ = units.l2_cache("l2_cache", config);
+    // It answers every line with its arrival cycle: nothing wakes the scheduler
+    // for a line it would answer later (kPendingCycle).
     LineReadIf& l2 = replacement_as<LineReadIf>(*l2_replacement_, "LineReadIf");
-    auto* fills = dynamic_cast<L2ReplacementIf*>(l2_replacement_.get());
-    no_fill_ = std::make_unique<NoLineFill>();
     for (RayTestCore& c : cores_) {
-      LineFillIf* fill = no_fill_.get();
-      if (L1Cache* l1 = c.l1()) {
-        l1->next.bind(l2);
-        fill = &static_cast<LineFillIf&>(*l1);
-      } else if (L2ClientIf* client = c.l2_client()) {
-        client->next_level().bind(l2);
-        fill = &client->fill_target();
-      }
-      if (fills) fills->fill_out().bind(*fill);
+      if (L1Cache* l1 = c.l1()) l1->next.bind(l2);
+      else if (L2ClientIf* client = c.l2_client()) client->next_level().bind(l2);
     }
   } else {
     l2_ = std::make_unique<L2Cache>("l2_cache", config.memory.l2, clock_, config.memory.tlm,

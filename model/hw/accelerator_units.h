@@ -11,9 +11,11 @@
 //                                       reach the L2)
 //   dispatcher       DispatchIf
 //   l2_cache         LineReadIf        the shared L2 and the memory behind it (the cores' L1s, and
-//                                       replacement L1s implementing L2ClientIf, are bound to it;
-//                                       L2ReplacementIf: its answers to pending lines); no TLM
-//                                       socket, no built-in DRAM then; memory.ideal: not built
+//                                       replacement L1s implementing L2ClientIf, are bound to it);
+//                                       it answers every line with its arrival cycle (nothing wakes
+//                                       the scheduler for a kPendingCycle answer: the run stops,
+//                                       its slots reported stuck); no TLM socket, no built-in DRAM
+//                                       then; memory.ideal: not built
 //   result_sink      ResultSinkIf      where finished rays go (bound to the built-in sink's port
 //                                       `forward`; the built-in one stays as result_accounting for
 //                                       the run's cycles and latencies; verdicts are the replacement's)

@@ -118,17 +118,6 @@ class L2ClientIf {
   virtual sc_core::sc_port_b<ReadDoneIf>& read_done() = 0;
 };
 
-/// What a replacement L2 (AcceleratorUnits::l2_cache, a LineReadIf: the L2
-/// and everything behind it) implements to answer lines it answered
-/// kPendingCycle: the accelerator binds fill_out() to every core's L1, in core
-/// order (LineReadIf's `core` indexes it). Without it the replacement must
-/// answer every line with its cycle.
-class L2ReplacementIf {
- public:
-  virtual ~L2ReplacementIf() = default;
-  virtual sc_core::sc_port_b<LineFillIf>& fill_out() = 0;
-};
-
 /// The dispatcher: which core takes the next ray.
 class DispatchIf : public virtual sc_core::sc_interface {
  public:

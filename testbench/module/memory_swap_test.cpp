@@ -191,3 +191,28 @@ TEST_CASE("a replacement L2 bound in place of the built-in one takes every L1 mi
   CHECK(mem["l2"]["accesses"] == 0);
   CHECK(run.counters.cycles > 0);
 }
+
+namespace {
+
+/// Never gives a line its cycle.
+class PendingL2 final : public sc_core::sc_module, public LineReadIf {
+ public:
+  explicit PendingL2(sc_core::sc_module_name n) : sc_core::sc_module(n) {}
+  uint64_t read_line(uint64_t, uint64_t, uint32_t) override { return kPendingCycle; }
+};
+
+}  // namespace
+
+TEST_CASE("a replacement L2 that answers a line kPendingCycle stops the run with its slots reported stuck",
+          "[module][swap][memory]") {
+  const std::string path = std::string(VBSIM_SOURCE_DIR) + "/traces/bunny/paths.jsonl";
+  auto src = open_trace(path);
+  const SceneAndBvh sb = load_trace_scene(src->header());
+  src->set_triangle_count(sb.scene.size());
+  CycleRunOptions options;
+  options.units.l2_cache = [](const char* name, const HwConfig&) { return std::make_unique<PendingL2>(name); };
+  CHECK_THROWS_WITH(run_cycle_replay([&](TraceRay& ray) { return src->next(ray); }, sb.scene, sb.bvh,
+                                     ReplayOptions{}, load_preset("small", "test"), {}, options),
+                    Catch::Matchers::Contains("the run stopped making progress") &&
+                        Catch::Matchers::Contains("waiting since cycle"));
+}
