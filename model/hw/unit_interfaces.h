@@ -20,7 +20,7 @@
 // it; Q = 1 keeps every call at its own cycle). With an approximately timed
 // memory and requests outstanding the bound is tighter (the target's
 // lookahead). Results never depend on Q; a unit that reads SystemC time or
-// other modules' signals must allow for it (testbench/module/unit_time_test.cpp
+// other modules' signals must allow for it (testbench/module/unit_payload_test.cpp
 // records sc_time_stamp() in a unit's calls and checks the bound).
 //
 // What a unit decides is *when* and *what*: the box unit, the triangle tester

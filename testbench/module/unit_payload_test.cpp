@@ -184,8 +184,10 @@ TEST_CASE("recording units see exactly the operations of the datapath's traversa
   src->set_triangle_count(sb.scene.size());
   HwConfig cfg = load_preset("small", "test");
   const uint32_t quantum = GENERATE(1u, 64u, 255u);
+  const TlmStyle tlm = GENERATE(TlmStyle::LooselyTimed, TlmStyle::ApproximatelyTimed);
   cfg.quantum_cycles = quantum;
-  INFO("quantum " << quantum);
+  cfg.memory.tlm = tlm;
+  INFO("quantum " << quantum << ", tlm " << tlm_style_name(tlm));
 
   // The reference: each ray stepped by the datapath alone, in trace order.
   std::vector<TraceRay> rays;
