@@ -7,8 +7,9 @@
 //   box_unit         BoxUnitIf         (in each core) the root's box, both child boxes of a node
 //   triangle_tester  TriangleTesterIf  (in each core) one triangle: candidate, t, u, v, front/back bit
 //   avoidance_unit   AvoidanceUnitIf   (in each core) one suspect candidate: reject or accept
-//   l1_cache         MemoryReadIf      (in each core: the core's whole memory path; it does not
-//                                       reach the L2)
+//   l1_cache         MemoryReadIf      (in each core) the core's whole memory path, or, when it
+//                                       also implements L2ClientIf, an L1 whose misses the
+//                                       accelerator binds to the L2 (unit_interfaces.h)
 //   dispatcher       DispatchIf
 //   l2_cache         LineReadIf        the shared L2 and the memory behind it (the cores' L1s, and
 //                                       replacement L1s implementing L2ClientIf, are bound to it);
@@ -23,8 +24,8 @@
 // The ray source is not replaceable: the scheduler drives it through
 // SourceHost (hw/ray_source.h), an interface of the scheduler's own.
 //
-// The memory behind the L2 is replaced at the TLM-2.0 socket instead
-// (Accelerator::memory_socket with external_memory set). A replaced unit
+// The memory behind the built-in L2 is replaced at the TLM-2.0 socket instead
+// (Accelerator::memory_socket with external_memory set; refused with l2_cache). A replaced unit
 // decides when its operations happen and what they answer (the operation
 // carries its payload: hw/unit_operations.h); a replacement that answers as
 // the datapath does keeps every hit, one that computes otherwise (e.g.
