@@ -4,7 +4,7 @@ namespace vbsim::hw {
 
 Dram::Dram(sc_core::sc_module_name name, const MemoryConfig& config, const CycleClock& clock)
     : sc_core::sc_module(name), socket("socket"), config_(config), clock_(clock),
-      channel_(config.dram_latency, config.dram_bytes_per_cycle, config.l2.line_bytes, config.dram_max_outstanding),
+      channel_(dram_line_latency(config), config.dram_bytes_per_cycle, config.l2.line_bytes, config.dram_max_outstanding),
       responses_("responses") {
   socket.bind(*this);
   SC_HAS_PROCESS(Dram);
@@ -24,6 +24,8 @@ Dram::Dram(sc_core::sc_module_name name, const MemoryConfig& config, const Cycle
 
 nlohmann::json Dram::parameters() const {
   return {{"latency", config_.dram_latency},
+          {"latency_per_byte", config_.dram_latency_per_byte},
+          {"line_latency", dram_line_latency(config_)},
           {"bytes_per_cycle", config_.dram_bytes_per_cycle},
           {"max_outstanding", config_.dram_max_outstanding},
           {"line_bytes", config_.l2.line_bytes}};

@@ -36,7 +36,7 @@ void read_unit(Fields& parent, const std::string& key, UnitConfig& u) {
   }
 }
 
-void read_cache(Fields& parent, const std::string& key, CacheConfig& c) {
+void read_cache(Fields& parent, const std::string& key, CacheConfig& c, bool has_ports) {
   if (const auto* v = parent.get(key)) {
     Fields f(*v, parent.file(), parent.path(key));
     f.integer("size_bytes", c.size_bytes, 64, 1u << 31);
@@ -49,6 +49,10 @@ void read_cache(Fields& parent, const std::string& key, CacheConfig& c) {
     f.integer("line_bytes", c.line_bytes, 16, 4096);
     f.integer("hit_latency", c.hit_latency, 0, 100000);
     f.integer("mshrs", c.mshrs, 1, 4096);
+    if (has_ports) {
+      f.integer("ports", c.ports, 0, 64);
+      f.integer("port_cycles", c.port_cycles, 1, 100000);
+    }
     if (full) {
       if (c.size_bytes % c.line_bytes != 0)
         fail(f.file(), f.path("ways"), "\"full\" needs size_bytes to be a whole number of lines");
@@ -75,9 +79,12 @@ void read_memory(Fields& parent, MemoryConfig& m) {
   Fields f(*v, parent.file(), field);
   f.boolean("ideal", m.ideal);
   f.integer("ideal_latency", m.ideal_latency, 1, 100000);
-  read_cache(f, "l1", m.l1);
-  read_cache(f, "l2", m.l2);
+  read_cache(f, "l1", m.l1, true);
+  read_cache(f, "l2", m.l2, false);
   f.integer("dram_latency", m.dram_latency, 1, 1000000);
+  f.number("dram_latency_per_byte", m.dram_latency_per_byte);
+  if (!(m.dram_latency_per_byte >= 0 && m.dram_latency_per_byte <= 1000))
+    fail(parent.file(), field + ".dram_latency_per_byte", "must be in [0, 1000]");
   f.number("dram_bytes_per_cycle", m.dram_bytes_per_cycle);
   if (!(m.dram_bytes_per_cycle > 0 && m.dram_bytes_per_cycle <= 4096))
     fail(parent.file(), field + ".dram_bytes_per_cycle", "must be in (0, 4096]");
@@ -242,6 +249,11 @@ nlohmann::json hw_config_json(const HwConfig& c) {
     return nlohmann::json{{"size_bytes", k.size_bytes}, {"ways", k.ways},   {"line_bytes", k.line_bytes},
                           {"hit_latency", k.hit_latency}, {"mshrs", k.mshrs}};
   };
+  const auto with_ports = [](nlohmann::json j, const CacheConfig& k) {
+    j["ports"] = k.ports;
+    j["port_cycles"] = k.port_cycles;
+    return j;
+  };
   const MemoryConfig& m = c.memory;
   return {{"preset", c.preset},
           {"clock_mhz", c.clock_mhz},
@@ -270,9 +282,10 @@ nlohmann::json hw_config_json(const HwConfig& c) {
           {"memory",
            {{"ideal", m.ideal},
             {"ideal_latency", m.ideal_latency},
-            {"l1", cache(m.l1)},
+            {"l1", with_ports(cache(m.l1), m.l1)},
             {"l2", cache(m.l2)},
             {"dram_latency", m.dram_latency},
+            {"dram_latency_per_byte", m.dram_latency_per_byte},
             {"dram_bytes_per_cycle", m.dram_bytes_per_cycle},
             {"dram_max_outstanding", m.dram_max_outstanding},
             {"tlm", tlm_style_name(m.tlm)},

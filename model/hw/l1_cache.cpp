@@ -17,6 +17,11 @@ L1Cache::L1Cache(sc_core::sc_module_name name, const CacheConfig& config, uint32
   declare_stat("reads", "reads", "reads by the core (a node, a leaf's triangles, a stack refill)", reads_);
   declare_stat("bytes", "bytes", "bytes the core read", bytes_);
   declare_stats(cache_level_statistics(level_, "the L2", misses_sent_late_));
+  if (config.ports != 0) {
+    ports_ = std::make_unique<UnitPipelines>(UnitConfig{config.ports, 1, config.port_cycles}, port_counters_,
+                                             std::string(this->name()) + " ports");
+    declare_stat("port_wait_cycles", "cycles", "cycles reads waited for a free port", port_counters_.wait_cycles);
+  }
 }
 
 void L1Cache::connect_fast(L2Cache* l2) {
@@ -34,10 +39,12 @@ nlohmann::json L1Cache::parameters() const {
           {"ways", config_.ways},
           {"line_bytes", config_.line_bytes},
           {"hit_latency", config_.hit_latency},
-          {"mshrs", config_.mshrs}};
+          {"mshrs", config_.mshrs},
+          {"ports", config_.ports},
+          {"port_cycles", config_.port_cycles}};
 }
 
-uint64_t L1Cache::read_direct(uint64_t addr, uint32_t bytes, uint64_t now, uint32_t slot) {
+uint64_t L1Cache::read_at(uint64_t addr, uint32_t bytes, uint64_t now, uint32_t slot) {
   switch (shape_) {  // the presets' associativities: loops unrolled, no switch per lookup
     case Shape::L1x4L2x8: return read_shaped<4, 8>(addr, bytes, now, slot);
     case Shape::L1x4L2x16: return read_shaped<4, 16>(addr, bytes, now, slot);
@@ -67,7 +74,7 @@ __attribute__((always_inline)) inline uint64_t L1Cache::read_line(uint64_t line,
   // Waits for an MSHR (start > now): with l2_lookups_in_time_order looked up in
   // the L2 when it leaves; else now, stamped with that cycle (its wait is in
   // mshr_stall_cycles). The clock first: one predictable test on the usual path.
-  if (__builtin_expect(clock_ != nullptr, 0) && a.start != now) return defer_until(line, slot, now, a.start);
+  if (__builtin_expect(clock_ != nullptr, 0) && a.start != event_now_) return defer_until(line, slot, now, a.start);
   const uint64_t fill = next_level<L2Ways>(line, a.start + level_.hit_latency());
   level_.fill<L1Ways>(line, fill, a.start);
   miss_sent(a.start);

@@ -14,6 +14,11 @@
 // default, faster) it is looked up at once, stamped with that cycle (its wait
 // is in mshr_stall_cycles): the L2 takes it before lookups stamped earlier.
 //
+// Ports (memory.l1.ports, 0: unlimited): a read waits until a port takes it
+// (UnitPipelines: `ports` pipelines, each taking a read every `port_cycles`
+// cycles); its lookups are made at that cycle, and the wait is in
+// port_wait_cycles.
+//
 // A miss's fill may not be known when it is sent (kPendingCycle: an L2 miss
 // whose request has not reached the memory target yet): the read is then
 // answered kPendingCycle and the core gets the cycle through `done`
@@ -23,6 +28,7 @@
 #pragma once
 #include <cstdint>
 #include <deque>
+#include <memory>
 #include <unordered_map>
 #include <vector>
 
@@ -34,6 +40,7 @@
 #include "hw/memory_config.h"
 #include "hw/stat_provider.h"
 #include "hw/unit_interfaces.h"
+#include "hw/unit_pipelines.h"
 #include "hw/vcd_recorder.h"
 
 namespace vbsim::hw {
@@ -61,7 +68,10 @@ class L1Cache final : public sc_core::sc_module, public MemoryReadIf, public Lin
   }
   /// read() without the virtual call (the scheduler's direct path; one call,
   /// the line loop and both levels' lookups inlined into it).
-  uint64_t read_direct(uint64_t addr, uint32_t bytes, uint64_t now, uint32_t slot);
+  uint64_t read_direct(uint64_t addr, uint32_t bytes, uint64_t now, uint32_t slot) {
+    event_now_ = now;
+    return read_at(addr, bytes, __builtin_expect(ports_ != nullptr, 0) ? ports_->issue(now, now) : now, slot);
+  }
   void line_filled(uint64_t line, uint64_t fill) override;
 
   /// Asks `clock` for the cycles its MSHR-waiting misses leave (null: none).
@@ -96,6 +106,8 @@ class L1Cache final : public sc_core::sc_module, public MemoryReadIf, public Lin
 
  private:
   enum class Shape { Any, L1x4L2x8, L1x4L2x16 };
+  /// The read a port took at cycle `now` (>= the cycle being handled).
+  uint64_t read_at(uint64_t addr, uint32_t bytes, uint64_t now, uint32_t slot);
   template <uint32_t L1Ways, uint32_t L2Ways>
   uint64_t read_shaped(uint64_t addr, uint32_t bytes, uint64_t now, uint32_t slot);
   template <uint32_t L1Ways, uint32_t L2Ways>
@@ -132,6 +144,9 @@ class L1Cache final : public sc_core::sc_module, public MemoryReadIf, public Lin
   const LruCache* l2_tags_ = nullptr;  // its tag array (for prefetch)
   uint64_t reads_ = 0, bytes_ = 0, first_now_ = 0, last_ready_ = 0;
   uint64_t misses_sent_late_ = 0;  ///< misses that waited for an MSHR whose fill was unknown
+  uint64_t event_now_ = 0;         // the cycle being handled (a read's lookups may be later: ports)
+  UnitCounters port_counters_;     // reads taken by a port and their waits
+  std::unique_ptr<UnitPipelines> ports_;  // null: no port limit
 
   struct PendingRead {
     uint32_t lines = 0;  ///< lines still unknown

@@ -33,9 +33,16 @@ void check_cache(const CacheConfig& c, const std::string& name, uint32_t min_hit
   if (c.hit_latency < min_hit_latency)
     reject(name + ".hit_latency", "must be at least " + std::to_string(min_hit_latency) + " cycle");
   if (c.mshrs == 0) reject(name + ".mshrs", "must be at least 1");
+  if (c.port_cycles == 0) reject(name + ".port_cycles", "must be at least 1");
 }
 
 }  // namespace
+
+uint32_t dram_line_latency(const MemoryConfig& config) {
+  // A product such as 64 x 0.1 lands a hair above the whole number it means.
+  const double extra = std::ceil(config.l2.line_bytes * config.dram_latency_per_byte - 1e-9);
+  return config.dram_latency + static_cast<uint32_t>(extra > 0 ? extra : 0);
+}
 
 const char* tlm_style_name(TlmStyle s) { return s == TlmStyle::LooselyTimed ? "lt" : "at"; }
 
@@ -45,10 +52,16 @@ void check_memory_config(const MemoryConfig& config, int cores) {
   // An L1 hit is the fastest answer and must take at least one cycle (port contract).
   check_cache(config.l1, "l1", 1);
   check_cache(config.l2, "l2", 0);
+  if (config.l2.ports != 0) reject("l2.ports", "the L2's ports are not modelled (only memory.l1.ports)");
   if (config.l2.line_bytes != config.l1.line_bytes)
     reject("l2.line_bytes", "must equal memory.l1.line_bytes (" + std::to_string(config.l1.line_bytes) +
                                 "), got " + std::to_string(config.l2.line_bytes));
   if (config.dram_latency == 0) reject("dram_latency", "must be at least 1 cycle");
+  const double per_byte = config.dram_latency_per_byte;
+  if (!std::isfinite(per_byte) || per_byte < 0 || per_byte > 1000)
+    reject("dram_latency_per_byte", "must be a number from 0 to 1000");
+  if (uint64_t{config.dram_latency} + static_cast<uint64_t>(std::ceil(config.l2.line_bytes * per_byte)) > 100000000)
+    reject("dram_latency_per_byte", "a line request would take more than 10^8 cycles");
   const double bpc = config.dram_bytes_per_cycle;
   if (!std::isfinite(bpc) || bpc <= 0) reject("dram_bytes_per_cycle", "must be a positive number");
   if (config.l2.line_bytes / bpc > 1048576.0)

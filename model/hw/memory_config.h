@@ -15,6 +15,11 @@ struct CacheConfig {
   uint32_t line_bytes = 64;
   uint32_t hit_latency = 0;  ///< cycles from request to data on a hit
   uint32_t mshrs = 0;        ///< misses in flight at once (outstanding-miss limit)
+  /// The L1 only: reads it accepts at once (0: any number, no port limit), each
+  /// port taking a new read `port_cycles` cycles after its previous one. A read
+  /// that finds every port busy waits; its lookups happen when a port takes it.
+  uint32_t ports = 0;
+  uint32_t port_cycles = 1;
 };
 
 /// How the L2's misses cross the TLM-2.0 socket to the DRAM target.
@@ -31,6 +36,9 @@ struct MemoryConfig {
   CacheConfig l1{16 * 1024, 4, 64, 2, 8};
   CacheConfig l2{1024 * 1024, 8, 64, 14, 32};
   uint32_t dram_latency = 120;        ///< cycles from an L2 miss to its line arriving (unloaded)
+  /// Further unloaded cycles per byte a request reads (a line: line_bytes of
+  /// them), rounded up to whole cycles per request: dram_line_latency().
+  double dram_latency_per_byte = 0;
   double dram_bytes_per_cycle = 16;   ///< DRAM bandwidth in bytes per core clock cycle
   uint32_t dram_max_outstanding = 32; ///< DRAM requests in flight at once
   TlmStyle tlm = TlmStyle::LooselyTimed;
@@ -44,6 +52,10 @@ struct MemoryConfig {
   /// with that cycle (the L2's accesses_out_of_time_order counts them).
   bool l2_lookups_in_time_order = false;
 };
+
+/// The unloaded latency of one line request: dram_latency plus
+/// ceil(line_bytes x dram_latency_per_byte) cycles.
+uint32_t dram_line_latency(const MemoryConfig& config);
 
 /// Throws std::invalid_argument naming the field ("memory.l1.ways: ...") when
 /// `config` cannot describe a hierarchy for `cores` cores. Ideal memories pass.

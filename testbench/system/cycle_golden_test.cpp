@@ -64,6 +64,9 @@ void strip_unpinned(nlohmann::json& j) {
       hw["memory"].erase("tlm");
       hw["memory"].erase("at_lookahead_cycles");
       hw["memory"].erase("l2_lookups_in_time_order");
+      hw["memory"].erase("dram_latency_per_byte");
+      hw["memory"]["l1"].erase("ports");
+      hw["memory"]["l1"].erase("port_cycles");
       for (const char* f : {"rays_per_cycle", "window", "dependencies", "missing_parents", "bundles", "bundle_cycles",
                             "bundle_max", "emission_width", "emission_depth"})
         hw["source"].erase(f);
