@@ -7,6 +7,9 @@
 //    when it arrives before the line's fill cycle (ready at the fill cycle),
 //    and hits from the fill cycle on (ready after the hit latency). Either way
 //    the line becomes the most recently used of its set.
+//    With merging off (CacheConfig::merge_misses false) such a request is a
+//    miss of its own instead (below), its line already allocated: it takes
+//    an MSHR and asks the next level again, and its data come with that answer.
 //  - Otherwise it misses: it takes the MSHR that frees first and leaves the
 //    level at the later of its arrival and that MSHR's free cycle (the wait is
 //    an MSHR-full stall). The caller then gives the fill cycle the next level
@@ -39,6 +42,10 @@ class CacheLevel {
     Outcome outcome;
     uint64_t ready;  ///< Hit, Merge
     uint64_t start;  ///< Miss
+    /// Miss: the line is already allocated, its own miss in flight (merging
+    /// off): the caller holds an MSHR for this miss (hold_mshr) and does not
+    /// allocate the line again.
+    bool allocated = false;
   };
 
   /// `config` is valid (make_memory checks it).
@@ -52,22 +59,17 @@ class CacheLevel {
     uint64_t fill;
     if (tags_.touch_in<Ways>(tags_.set_of(line), line, fill)) {
       if (t < fill) {
+        if (__builtin_expect(!merge_, 0)) return miss(t, true);
         ++counters_.merges;
         return {Outcome::Merge, fill, 0};
       }
       ++counters_.hits;
       return {Outcome::Hit, t + hit_latency_, 0};
     }
-    ++counters_.misses;
-    // The earliest free cycle of any MSHR: the front of the sorted ring.
-    const uint64_t free_at = ring_[head_];
-    const uint64_t start = free_at > t ? free_at : t;
-    // (start kPendingCycle: every MSHR waits for a fill not known yet; the
-    // caller takes this back, uncount_pending_wait, and counts the wait once
-    // the miss is sent.)
-    counters_.mshr_stall_cycles += start - t;
-    return {Outcome::Miss, 0, start};
+    return miss(t, false);
   }
+  /// Requests for a line in flight wait for its miss (CacheConfig::merge_misses).
+  bool merges_misses() const { return merge_; }
   /// Completes the miss of `line` that the last access() answered with Miss,
   /// sent at `start` (the Access's): its data arrive at `fill` (>= start). The
   /// line is allocated now, in the way of the least recently used line not in
@@ -101,7 +103,8 @@ class CacheLevel {
   void uncount_pending_wait(uint64_t t) { counters_.mshr_stall_cycles -= kPendingCycle - t; }
   /// The miss of `line` allocated with an unknown fill has its data at `fill`:
   /// the line (if still present) and one MSHR held until an unknown cycle
-  /// take that cycle.
+  /// take that cycle. With merging off the line's fill is set only while it
+  /// is unknown (a later miss of the same line does not move its first fill).
   void resolve(uint64_t line, uint64_t fill);
   /// A request counted as a merge turned out to arrive at or after the fill: a hit.
   void recount_merge_as_hit() {
@@ -119,12 +122,25 @@ class CacheLevel {
   const LruCache& tags() const { return tags_; }
 
  private:
+  /// A miss at `t`: it leaves when the MSHR that frees first is free.
+  Access miss(uint64_t t, bool allocated) {
+    ++counters_.misses;
+    // The earliest free cycle of any MSHR: the front of the sorted ring.
+    const uint64_t free_at = ring_[head_];
+    const uint64_t start = free_at > t ? free_at : t;
+    // (start kPendingCycle: every MSHR waits for a fill not known yet; the
+    // caller takes this back, uncount_pending_wait, and counts the wait once
+    // the miss is sent.)
+    counters_.mshr_stall_cycles += start - t;
+    return {Outcome::Miss, 0, start, allocated};
+  }
   /// The free cycle at position k of the ring (0: the front).
   uint64_t& ring_at(uint32_t k) { return ring_[(head_ + k) & ring_mask_]; }
 
   LruCache tags_;
   uint32_t hit_latency_;
   uint32_t mshrs_;
+  bool merge_;
   // Every MSHR's free cycle (the fill of the miss it holds, 0 when it never
   // held one), sorted, in a ring that starts at head_: the front is the
   // earliest. The ring's storage has a power-of-two size >= mshrs_ (a position

@@ -49,6 +49,7 @@ void read_cache(Fields& parent, const std::string& key, CacheConfig& c, bool has
     f.integer("line_bytes", c.line_bytes, 16, 4096);
     f.integer("hit_latency", c.hit_latency, 0, 100000);
     f.integer("mshrs", c.mshrs, 1, 4096);
+    f.boolean("merge_misses", c.merge_misses);
     if (has_ports) {
       f.integer("ports", c.ports, 0, 64);
       f.integer("port_cycles", c.port_cycles, 1, 100000);
@@ -247,7 +248,8 @@ nlohmann::json hw_config_json(const HwConfig& c) {
   };
   const auto cache = [](const CacheConfig& k) {
     return nlohmann::json{{"size_bytes", k.size_bytes}, {"ways", k.ways},   {"line_bytes", k.line_bytes},
-                          {"hit_latency", k.hit_latency}, {"mshrs", k.mshrs}};
+                          {"hit_latency", k.hit_latency}, {"mshrs", k.mshrs},
+                          {"merge_misses", k.merge_misses}};
   };
   const auto with_ports = [](nlohmann::json j, const CacheConfig& k) {
     j["ports"] = k.ports;

@@ -40,6 +40,7 @@ nlohmann::json L1Cache::parameters() const {
           {"line_bytes", config_.line_bytes},
           {"hit_latency", config_.hit_latency},
           {"mshrs", config_.mshrs},
+          {"merge_misses", config_.merge_misses},
           {"ports", config_.ports},
           {"port_cycles", config_.port_cycles}};
 }
@@ -67,16 +68,18 @@ __attribute__((always_inline)) inline uint64_t L1Cache::read_line(uint64_t line,
   }
   if (__builtin_expect(a.start == kPendingCycle, 0)) {  // every MSHR waits for a fill not known yet
     level_.uncount_pending_wait(now);
-    level_.install<L1Ways>(line, kPendingCycle, now);
+    if (!a.allocated) level_.install<L1Ways>(line, kPendingCycle, now);
     defer_miss(line, slot, now);
     return kPendingCycle;
   }
   // Waits for an MSHR (start > now): with l2_lookups_in_time_order looked up in
   // the L2 when it leaves; else now, stamped with that cycle (its wait is in
   // mshr_stall_cycles). The clock first: one predictable test on the usual path.
-  if (__builtin_expect(clock_ != nullptr, 0) && a.start != event_now_) return defer_until(line, slot, now, a.start);
+  if (__builtin_expect(clock_ != nullptr, 0) && a.start != event_now_)
+    return defer_until(line, slot, now, a.start, a.allocated);
   const uint64_t fill = next_level<L2Ways>(line, a.start + level_.hit_latency());
-  level_.fill<L1Ways>(line, fill, a.start);
+  if (__builtin_expect(a.allocated, 0)) level_.hold_mshr(fill);  // merging off: the line is there, in flight
+  else level_.fill<L1Ways>(line, fill, a.start);
   miss_sent(a.start);
   if (fill != kPendingCycle) miss_filled(fill);
   if (__builtin_expect(vcd_ != nullptr, 0)) trace_miss(a.start, fill);
@@ -123,8 +126,8 @@ void L1Cache::defer_miss(uint64_t line, uint32_t slot, uint64_t t) {
   wait_for(line, slot, t);
 }
 
-uint64_t L1Cache::defer_until(uint64_t line, uint32_t slot, uint64_t t, uint64_t start) {
-  level_.install<0>(line, kPendingCycle, t);
+uint64_t L1Cache::defer_until(uint64_t line, uint32_t slot, uint64_t t, uint64_t start, bool allocated) {
+  if (!allocated) level_.install<0>(line, kPendingCycle, t);
   level_.hold_mshr(kPendingCycle);
   send_at(line, start);
   wait_for(line, slot, t);

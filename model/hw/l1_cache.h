@@ -120,7 +120,9 @@ class L1Cache final : public sc_core::sc_module, public MemoryReadIf, public Lin
   void defer_miss(uint64_t line, uint32_t slot, uint64_t t);
   /// A miss found at `t` that leaves at `start` (> t): allocated and holding
   /// its MSHR now, sent by send_due; kPendingCycle (out of line: the rare path).
-  __attribute__((noinline, cold)) uint64_t defer_until(uint64_t line, uint32_t slot, uint64_t t, uint64_t start);
+  /// `allocated`: the line is there already (a miss of a line in flight, merging off).
+  __attribute__((noinline, cold)) uint64_t defer_until(uint64_t line, uint32_t slot, uint64_t t, uint64_t start,
+                                                       bool allocated);
   /// The miss of `line`, holding its MSHR, leaves for the L2 at `start` (send_due).
   void send_at(uint64_t line, uint64_t start);
   uint64_t pend_read(uint32_t slot, uint32_t lines, uint64_t ready);

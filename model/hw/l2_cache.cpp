@@ -39,6 +39,7 @@ nlohmann::json L2Cache::parameters() const {
           {"line_bytes", config_.line_bytes},
           {"hit_latency", config_.hit_latency},
           {"mshrs", config_.mshrs},
+          {"merge_misses", config_.merge_misses},
           {"tlm", tlm_style_name(style_)},
           {"at_lookahead_cycles", lookahead_}};
 }

@@ -14,12 +14,13 @@ __attribute__((always_inline)) inline uint64_t L2Cache::read_line_inline(uint64_
   }
   if (__builtin_expect(a.start == kPendingCycle, 0)) {  // every MSHR waits for a fill not known yet
     level_.uncount_pending_wait(t);
-    level_.install<Ways>(line, kPendingCycle, t);
+    if (!a.allocated) level_.install<Ways>(line, kPendingCycle, t);
     defer_miss(line, core, t);
     return kPendingCycle;
   }
   const uint64_t fill = dram_read(line, a.start + level_.hit_latency());
-  level_.fill<Ways>(line, fill, a.start);
+  if (__builtin_expect(a.allocated, 0)) level_.hold_mshr(fill);  // merging off: the line is there, in flight
+  else level_.fill<Ways>(line, fill, a.start);
   if (__builtin_expect(fill == kPendingCycle, 0)) wait_for(line, core, t);
   return fill;
 }

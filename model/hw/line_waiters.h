@@ -21,20 +21,32 @@ class LineWaiters {
   /// a hit (recounted from a merge in `level`) ready after the hit latency,
   /// the others at the fill. `answer` may add waiters for other lines, and
   /// fill lines itself (nested calls).
+  ///
+  /// A level that does not merge misses (CacheConfig::merge_misses false) has
+  /// one waiter per miss of its own, each miss one fill: the fill answers the
+  /// line's waiter that asked first (the smallest cycle; misses of one line
+  /// are sent, and the built-in DRAM answers them, in that order), never as a
+  /// hit (its own miss's data come after it asked).
   template <class Answer>
   void fill(uint64_t line, uint64_t fill, CacheLevel& level, Answer&& answer) {
     if (scratch_.size() == depth_) scratch_.emplace_back();
     std::vector<Entry>& mine = scratch_[depth_];
     mine.clear();
     size_t kept = 0;
-    for (const Entry& e : entries_) {
-      if (e.line == line) mine.push_back(e);
+    const bool all = level.merges_misses();
+    size_t first = entries_.size();
+    if (!all)
+      for (size_t i = 0; i < entries_.size(); ++i)
+        if (entries_[i].line == line && (first == entries_.size() || entries_[i].t < entries_[first].t)) first = i;
+    for (size_t i = 0; i < entries_.size(); ++i) {
+      const Entry& e = entries_[i];
+      if (all ? e.line == line : i == first) mine.push_back(e);
       else entries_[kept++] = e;
     }
     entries_.resize(kept);
     ++depth_;
     for (const Entry& e : mine) {
-      const bool hit = e.t >= fill;
+      const bool hit = all && e.t >= fill;
       if (hit) level.recount_merge_as_hit();
       answer(e.who, hit ? e.t + level.hit_latency() : fill);
     }

@@ -87,6 +87,13 @@ class LruCache {
     return true;
   }
 
+  /// The fill cycle of `line`, or 0 when it is not in the array.
+  uint64_t fill_of(uint64_t line) const {
+    const Way* set = set_at_index(set_of(line), ways_);
+    const uint32_t w = find_in(set, line, ways_);
+    return w == ways_ ? 0 : set[w].fill;
+  }
+
   /// Asks the host's caches for the set of `line` (no effect on any result).
   void prefetch(uint64_t line) const {
     const char* p = reinterpret_cast<const char*>(set_at_index(set_of(line), ways_));

@@ -15,6 +15,9 @@ struct CacheConfig {
   uint32_t line_bytes = 64;
   uint32_t hit_latency = 0;  ///< cycles from request to data on a hit
   uint32_t mshrs = 0;        ///< misses in flight at once (outstanding-miss limit)
+  /// A request for a line whose miss is in flight waits for that miss (true),
+  /// or is a miss of its own: an MSHR and a request to the next level (false).
+  bool merge_misses = true;
   /// The L1 only: reads it accepts at once (0: any number, no port limit), each
   /// port taking a new read `port_cycles` cycles after its previous one. A read
   /// that finds every port busy waits; its lookups happen when a port takes it.

@@ -67,6 +67,8 @@ void strip_unpinned(nlohmann::json& j) {
       hw["memory"].erase("dram_latency_per_byte");
       hw["memory"]["l1"].erase("ports");
       hw["memory"]["l1"].erase("port_cycles");
+      hw["memory"]["l1"].erase("merge_misses");
+      hw["memory"]["l2"].erase("merge_misses");
       for (const char* f : {"rays_per_cycle", "window", "dependencies", "missing_parents", "bundles", "bundle_cycles",
                             "bundle_max", "emission_width", "emission_depth"})
         hw["source"].erase(f);
