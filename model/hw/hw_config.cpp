@@ -126,12 +126,12 @@ const char* dispatch_policy_name(DispatchPolicy p) {
   return p == DispatchPolicy::RoundRobin ? "round-robin" : "least-loaded";
 }
 
-std::vector<std::string> preset_names() { return {"small", "large"}; }
+std::vector<std::string> preset_names() { return {"small", "large", "rtcore"}; }
 
 HwConfig load_preset(const std::string& name, const std::string& origin) {
   bool known = false;
   for (const std::string& n : preset_names()) known |= n == name;
-  if (!known) fail(origin, "hw.preset", "unknown preset '" + name + "' (presets: small, large)");
+  if (!known) fail(origin, "hw.preset", "unknown preset '" + name + "' (presets: small, large, rtcore)");
   const std::string path = preset_path(name);
   HwConfig cfg;
   nlohmann::json j = read_config_json(path);

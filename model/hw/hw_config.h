@@ -89,7 +89,7 @@ struct HwConfig {
 
 /// Names of the committed presets.
 std::vector<std::string> preset_names();
-/// The preset `name` (small, large). Throws ConfigError naming `origin` and the
+/// The preset `name` (small, large, rtcore). Throws ConfigError naming `origin` and the
 /// preset when it is unknown or its file is broken.
 HwConfig load_preset(const std::string& name, const std::string& origin);
 

@@ -64,7 +64,7 @@ void add_hw_command(CLI::App& app) {
   cmd->add_flag("--area", args->area,
                 "print the area of every unit instance and of the chip, priced by the technology file (--tech)");
   add_tech_option(*cmd, args->tech);
-  cmd->add_option("--preset", args->preset, "hardware preset, small or large [the config's hw.preset, else small]");
+  cmd->add_option("--preset", args->preset, "hardware preset, small, large or rtcore [the config's hw.preset, else small]");
   cmd->add_option("--json", args->json, "also write the hierarchy, statistics and configuration as JSON here");
   add_method_options(*cmd, args->method, "validity-bit");
   cmd->callback([args] { run_hw(*args); });

@@ -268,7 +268,7 @@ void add_replay_command(CLI::App& app) {
   cmd->add_option("trace", args->trace, "trace file (.jsonl text or .vbt binary)")->required();
   cmd->add_option("--mode", args->mode, "replay mode: functional (untimed) or cycle (the SystemC hardware model)")
       ->capture_default_str();
-  cmd->add_option("--preset", args->preset, "cycle mode: hardware preset, small or large [the config's hw.preset, else small]");
+  cmd->add_option("--preset", args->preset, "cycle mode: hardware preset, small, large or rtcore [the config's hw.preset, else small]");
   cmd->add_option("--vcd", args->vcd,
                   "cycle mode: write a VCD of per-instance values (busy slots, operations in flight, L1 misses) here");
   CLI::Option* vcd_start =

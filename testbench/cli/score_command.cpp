@@ -151,7 +151,7 @@ void add_score_command(CLI::App& app) {
                   "functional, or cycle: also every configuration's cycles per ray and rays per cycle from the "
                   "cycle-level model on the same traces (one replay at a time)")
       ->capture_default_str();
-  cmd->add_option("--preset", args->preset, "cycle mode: hardware preset, small or large [small]");
+  cmd->add_option("--preset", args->preset, "cycle mode: hardware preset, small, large or rtcore [small]");
   add_tech_option(*cmd, args->tech);
   cmd->add_option("--cycle-testers", args->cycle_testers,
                   "cycle mode: the testers whose configurations are timed [every tester of --testers]");

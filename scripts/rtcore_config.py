@@ -1,0 +1,89 @@
+#!/usr/bin/python3
+"""The vbsim configuration that models rtcore-systemc's core with the given tb_top arguments.
+
+    scripts/rtcore_config.py [LP_L1C_ENTRIES [HP_L1C_ENTRIES [IST_L1C_ENTRIES [T_TRAV_HIGH
+                              [T_TRAV_LOW [NUM_LP [NUM_HP [NUM_IST]]]]]]]] > rtcore.json
+    vbsim replay TRACE --mode cycle --config rtcore.json
+
+The arguments are rtcore-systemc's `tb_top` arguments after its two file names, in its
+order, with its defaults (512 512 512 0.5 0.47 4 4 1). The JSON printed is
+`{"hw": {...}}` on top of vbsim's `rtcore` preset (model/hw/presets/rtcore.json);
+docs/hw-model.md, "Modelling rtcore-systemc", says how each part maps and what the
+mapping cannot express; those parts are also named on stderr.
+"""
+import json
+import math
+import sys
+
+# rtcore-systemc's src/misc/params.hpp: tb_top's defaults and the object sizes.
+NAMES = ["LP_L1C_ENTRIES", "HP_L1C_ENTRIES", "IST_L1C_ENTRIES", "T_TRAV_HIGH", "T_TRAV_LOW",
+         "NUM_LP", "NUM_HP", "NUM_IST"]
+DEFAULTS = [512, 512, 512, 0.5, 0.47, 4, 4, 1]
+KINDS = [int, int, int, float, float, int, int, int]
+LP_BYTES, HP_BYTES, IST_BYTES = 40, 64, 36  # bytes per entry of the three L1 caches
+LINE_BYTES = 64                              # vbsim's line (a node is one line)
+LP_LATENCY, IST_LATENCY = 20, 32             # box (both pools) and triangle latency, cycles
+MAX_WAYS = 65536                             # vbsim's largest associativity
+
+
+class UsageError(Exception):
+    pass
+
+
+def parse(argv):
+    """rtcore's argument list: the given values in order, the rest its defaults."""
+    if len(argv) > len(NAMES):
+        raise UsageError(f"at most {len(NAMES)} arguments ({' '.join(NAMES)}), got {len(argv)}")
+    values = list(DEFAULTS)
+    for i, text in enumerate(argv):
+        try:
+            values[i] = KINDS[i](text)
+        except ValueError:
+            raise UsageError(f"{NAMES[i]}: '{text}' is not a{'n integer' if KINDS[i] is int else ' number'}")
+        if KINDS[i] is int and values[i] < (0 if i < 3 else 1):
+            raise UsageError(f"{NAMES[i]}: must be at least {0 if i < 3 else 1}, got {values[i]}")
+    return dict(zip(NAMES, values))
+
+
+def config(a):
+    """The hw object for rtcore's arguments `a` (a dict by NAMES)."""
+    cache_bytes = a["LP_L1C_ENTRIES"] * LP_BYTES + a["HP_L1C_ENTRIES"] * HP_BYTES + a["IST_L1C_ENTRIES"] * IST_BYTES
+    lines = max(1, math.ceil(cache_bytes / LINE_BYTES))
+    if lines > MAX_WAYS:
+        raise UsageError(f"the three L1 caches hold {cache_bytes} bytes, more than {MAX_WAYS} lines of {LINE_BYTES}")
+    return {"hw": {
+        "preset": "rtcore",
+        # One box pool: the low-precision pool's units (most nodes of rtcore's
+        # default marking go there); each unit holds an operation LP_LATENCY cycles.
+        "box": {"count": a["NUM_LP"], "latency": LP_LATENCY, "issue_interval": LP_LATENCY},
+        "triangle": {"count": a["NUM_IST"], "latency": IST_LATENCY, "issue_interval": IST_LATENCY},
+        # The three object caches as one fully associative L1 of the same bytes.
+        "memory": {"l1": {"size_bytes": lines * LINE_BYTES, "ways": "full"}},
+    }}
+
+
+def not_modelled(a):
+    """What of `a` the configuration cannot express."""
+    notes = [f"T_TRAV_HIGH {a['T_TRAV_HIGH']} and T_TRAV_LOW {a['T_TRAV_LOW']}: vbsim has no low/high-precision "
+             "node marking (one box pool, full precision)"]
+    if a["NUM_HP"] != a["NUM_LP"]:
+        notes.append(f"NUM_HP {a['NUM_HP']}: vbsim has one box pool, sized as NUM_LP {a['NUM_LP']}")
+    return notes
+
+
+def main(argv):
+    try:
+        a = parse(argv)
+        out = config(a)
+    except UsageError as e:
+        print(f"rtcore_config.py: {e}", file=sys.stderr)
+        print("\n".join(__doc__.strip().splitlines()[2:4]), file=sys.stderr)
+        return 2
+    for note in not_modelled(a):
+        print(f"rtcore_config.py: not modelled: {note}", file=sys.stderr)
+    print(json.dumps(out, indent=2))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))

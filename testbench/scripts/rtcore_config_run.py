@@ -1,0 +1,75 @@
+#!/usr/bin/python3
+"""scripts/rtcore_config.py: rtcore-systemc's tb_top arguments, in its order and with
+its defaults, become a configuration vbsim accepts, with the sizes computed by hand.
+
+    /usr/bin/python3 rtcore_config_run.py PATH_TO_VBSIM
+"""
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import unittest
+
+ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
+SCRIPT = os.path.join(ROOT, "scripts", "rtcore_config.py")
+VBSIM = None
+
+
+def run(*args):
+    return subprocess.run(["/usr/bin/python3", SCRIPT, *map(str, args)], capture_output=True, text=True)
+
+
+class RtcoreConfigTest(unittest.TestCase):
+    def test_defaults_are_rtcores(self):
+        r = run()
+        self.assertEqual(r.returncode, 0, r.stderr)
+        hw = json.loads(r.stdout)["hw"]
+        self.assertEqual(hw["preset"], "rtcore")
+        # 512 entries of 40 + 64 + 36 bytes = 71,680 bytes = 1,120 lines of 64.
+        self.assertEqual(hw["memory"]["l1"], {"size_bytes": 71680, "ways": "full"})
+        self.assertEqual(hw["box"], {"count": 4, "latency": 20, "issue_interval": 20})
+        self.assertEqual(hw["triangle"], {"count": 1, "latency": 32, "issue_interval": 32})
+        self.assertIn("T_TRAV_HIGH", r.stderr)  # named as not modelled
+
+    def test_arguments_in_tb_tops_order(self):
+        r = run(16, 32, 8, 0.5, 0.47, 2, 2, 3)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        hw = json.loads(r.stdout)["hw"]
+        # 16 x 40 + 32 x 64 + 8 x 36 = 2,976 bytes: 47 lines (2,976 / 64 = 46.5, rounded up).
+        self.assertEqual(hw["memory"]["l1"]["size_bytes"], 47 * 64)
+        self.assertEqual(hw["box"]["count"], 2)
+        self.assertEqual(hw["triangle"]["count"], 3)
+        self.assertNotIn("NUM_HP", r.stderr)  # equal pools: nothing lost
+        r = run(512, 512, 512, 0.5, 0.47, 4, 8)
+        self.assertIn("NUM_HP 8", r.stderr)
+
+    def test_bad_arguments(self):
+        for args, field in [(["x"], "LP_L1C_ENTRIES"), ([512, 512, 512, "high"], "T_TRAV_HIGH"),
+                            ([512, 512, 512, 0.5, 0.47, 0], "NUM_LP"), ([1] * 9, "at most 8")]:
+            r = run(*args)
+            self.assertEqual(r.returncode, 2, args)
+            self.assertIn(field, r.stderr)
+            self.assertEqual(r.stdout, "")
+
+    def test_vbsim_takes_it(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            cfg = os.path.join(tmp, "rtcore.json")
+            with open(cfg, "w") as f:
+                f.write(run(16, 16, 16, 0.5, 0.47, 1, 1, 2).stdout)
+            out = os.path.join(tmp, "hw.json")
+            r = subprocess.run([VBSIM, "hw", "--config", cfg, "--json", out], capture_output=True, text=True)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            with open(out) as f:
+                hw = json.load(f)["config"]
+            # 16 x 140 = 2,240 bytes: 35 lines, one set of 35 ways.
+            self.assertEqual(hw["memory"]["l1"]["ways"], 35)
+            self.assertEqual(hw["memory"]["l1"]["merge_misses"], False)
+            self.assertEqual(hw["memory"]["dram_latency_per_byte"], 5)
+            self.assertEqual(hw["triangle"]["count"], 2)
+            self.assertEqual(hw["cores"], 1)
+
+
+if __name__ == "__main__":
+    VBSIM = sys.argv.pop(1)
+    unittest.main()
