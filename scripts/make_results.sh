@@ -117,6 +117,9 @@ mkdir -p "$out/captured/pathtracer"
 /usr/bin/python3 scripts/energy_page.py --score "$out/accuracy.json" --score "$out/pathtracer.json" --out docs/results
 /usr/bin/python3 scripts/sweep.py --vbsim "$vbsim" --work "$out/sweeps" --out docs/results ${backend[@]+"${backend[@]}"}
 /usr/bin/python3 scripts/make_montage.py
+# The timing cross-validation against rtcore-systemc: only where its source is given
+# (VBSIM_RTCORE_SRC); skipped with a message otherwise, leaving the page as it was.
+/usr/bin/python3 scripts/rtcore_crossval.py --vbsim "$vbsim"
 echo "make_results.sh: every result in docs/results/ regenerated" >&2
 # Every figure docs/findings.md quotes against the regenerated results and its own
 # reruns (scripts/check_findings.py): a figure that moved fails here, and the page

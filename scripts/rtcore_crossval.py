@@ -1,0 +1,288 @@
+#!/usr/bin/python3
+"""Cross-validation of vbsim's timing against rtcore-systemc, regime by regime.
+
+    /usr/bin/python3 scripts/rtcore_crossval.py [--rtcore-src DIR] [--rays N] [--scene OBJ]
+        [--vbsim PATH] [--work DIR] [--out FILE]
+
+Both simulators run the same primary rays over the same mesh (`vbsim gen paths` camera
+rays, written for rtcore by `vbsim convert --to rtcore --scene-out`), in each of the
+regimes below: rtcore-systemc with its `tb_top` arguments, vbsim with the configuration
+scripts/rtcore_config.py gives for the same arguments. The page (default
+docs/results/rtcore-crossval.md) has both cycle counts per ray, the per-ray latency
+correlation, the work each side did (box and triangle operations, L1 misses) and each
+side's busiest unit, which is what explains a residual.
+
+rtcore-systemc is a peer, never part of vbsim: its source (a checkout with its
+submodules bvh and happly; it needs libmpfr-dev) is given by --rtcore-src or
+VBSIM_RTCORE_SRC, and built here with CMake into the work directory. Without it the
+script says so and exits 0 without writing anything.
+
+rtcore stops its simulation once the last ray is sent, leaving up to 32 rays unfinished.
+Rays padded behind the real ones would change the tail (each costs rtcore a root-node
+test in its high-precision box pool), so the run is measured before that tail instead:
+cycles per ray on both sides are the cycle at which all but the last TAIL_RAYS rays
+(64) have finished, over their number. Per-ray latency (rtcore: the cycle a ray is
+accepted to its result; vbsim: the cycle it starts in a slot to its finish, --ray-log)
+is compared over the rays rtcore finished.
+"""
+import argparse
+import json
+import math
+import os
+import re
+import shutil
+import statistics
+import subprocess
+import sys
+
+ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+sys.path.insert(0, os.path.join(ROOT, "scripts"))
+import rtcore_config  # noqa: E402
+
+TAIL_RAYS = 64
+# rtcore tb_top arguments: LP_L1C HP_L1C IST_L1C T_TRAV_HIGH T_TRAV_LOW NUM_LP NUM_HP NUM_IST.
+REGIMES = [
+    ("rtcore's defaults: one triangle unit", "triangle-unit-bound", [512, 512, 512, 0.5, 0.47, 4, 4, 1]),
+    ("two triangle units", "triangle-unit-bound", [512, 512, 512, 0.5, 0.47, 4, 4, 2]),
+    ("one box unit per pool, four triangle units", "box-unit-bound", [512, 512, 512, 0.5, 0.47, 1, 1, 4]),
+    ("one unit of each kind", "one unit", [512, 512, 512, 0.5, 0.47, 1, 1, 1]),
+    ("32 units of each kind", "many units: controller-bound", [512, 512, 512, 0.5, 0.47, 32, 32, 32]),
+    ("64-entry caches, 32 units", "cache-bound", [64, 64, 64, 0.5, 0.47, 32, 32, 32]),
+    ("16-entry caches, 32 units", "cache-bound", [16, 16, 16, 0.5, 0.47, 32, 32, 32]),
+    ("2-entry caches, 32 units", "memory-bound", [2, 2, 2, 0.5, 0.47, 32, 32, 32]),
+    ("16-entry caches, one triangle unit", "cache and unit", [16, 16, 16, 0.5, 0.47, 4, 4, 1]),
+]
+SENT = re.compile(r"m_shader @ (\d+),\w+: ray sent, id=(\d+) \(count=(\d+)\)")
+RESULT = re.compile(r"m_shader @ (\d+),\w+: result received, id=(\d+)")
+COUNT = re.compile(r"^(m_rtcore\.\S+):\s*$")
+
+
+def run(cmd, **kw):
+    r = subprocess.run(cmd, capture_output=True, text=True, **kw)
+    if r.returncode != 0:
+        sys.exit(f"rtcore_crossval.py: {' '.join(map(str, cmd))} failed ({r.returncode}):\n{r.stderr[-2000:]}")
+    return r
+
+
+def build_rtcore(src, work):
+    build = os.path.join(work, "rtcore-build")
+    tb_top = os.path.join(build, "tb_top")
+    if not os.path.exists(os.path.join(build, "CMakeCache.txt")):
+        run(["cmake", "-S", src, "-B", build, "-DCMAKE_BUILD_TYPE=Release"])
+    run(["cmake", "--build", build, "--target", "tb_top", "-j", str(os.cpu_count() or 1)])
+    return tb_top
+
+
+def make_rays(vbsim, scene, rays, work):
+    """Primary rays of `rays` camera paths over `scene`: vbsim's trace and rtcore's ray and mesh files."""
+    gen = os.path.join(work, "gen")
+    run([vbsim, "gen", "paths", "--rays", str(rays), "--seed", "1", "--set", f"scene={scene}", "-q", "-o", gen])
+    with open(os.path.join(gen, "paths.jsonl")) as f:
+        header, *lines = f.read().splitlines()
+    head = json.loads(header)
+    head["scene"] = os.path.normpath(os.path.join(gen, head["scene"])) if not os.path.isabs(head["scene"]) \
+        else head["scene"]
+    primary = [l for l in lines if json.loads(l).get("parent", -1) == -1]
+    trace = os.path.join(work, "primary.jsonl")
+    with open(trace, "w") as f:
+        f.write(json.dumps(head) + "\n" + "\n".join(primary) + "\n")
+    ray_file, mesh = os.path.join(work, "rays.bin"), os.path.join(work, "mesh.ply")
+    run([vbsim, "convert", trace, "--to", "rtcore", "-o", ray_file, "--scene-out", mesh, "-q"])
+    return trace, ray_file, mesh, len(primary)
+
+
+def measured_cycle(finishes, n):
+    """The cycle by which all but the last TAIL_RAYS of `n` rays had finished."""
+    k = n - TAIL_RAYS
+    if len(finishes) < k:
+        sys.exit(f"rtcore_crossval.py: only {len(finishes)} of {n} rays finished")
+    return sorted(finishes)[k - 1]
+
+
+def run_rtcore(tb_top, mesh, ray_file, args, n):
+    """The measured cycle, per-ray latencies (None: not finished), and the counts rtcore prints."""
+    r = run([tb_top, mesh, ray_file, *map(str, args)], cwd=os.path.dirname(tb_top))
+    slot_ray, sent, latency, finishes = {}, {}, [None] * n, []
+    counts, module = {}, None
+    for line in r.stdout.splitlines():
+        if m := SENT.match(line):
+            t, slot, count = map(int, m.groups())
+            slot_ray[slot] = count - 1
+            sent[count - 1] = t
+        elif m := RESULT.match(line):
+            t, slot = map(int, m.groups())
+            ray = slot_ray.pop(slot)
+            latency[ray] = t - sent[ray]
+            finishes.append(t)
+        elif m := COUNT.match(line):
+            module = m.group(1)
+        elif module and (m := re.match(r"^(miss|hit) = (\d+)$", line)):
+            counts[f"{module}.{m.group(1)}"] = int(m.group(2))
+        elif m := re.match(r"^(lp|hp) processed (\d+) nodes$", line):
+            counts[m.group(1)] = int(m.group(2))
+        elif m := re.match(r"^ist processed (\d+) triangles$", line):
+            counts["ist"] = int(m.group(1))
+    if len(sent) != n:
+        sys.exit(f"rtcore_crossval.py: rtcore sent {len(sent)} of {n} rays")
+    return {"cycles": measured_cycle(finishes, n), "end": max(finishes), "latency": latency, "counts": counts}
+
+
+def run_vbsim(vbsim, trace, args, work, n):
+    cfg = os.path.join(work, "vbsim-config.json")
+    with open(cfg, "w") as f:
+        json.dump(rtcore_config.config(rtcore_config.parse(list(map(str, args)))), f)
+    stats, log = os.path.join(work, "vbsim-stats.json"), os.path.join(work, "vbsim-rays.jsonl")
+    run([vbsim, "replay", trace, "--mode", "cycle", "--config", cfg, "-m", "none", "--deps", "off",
+         "--stats", stats, "--ray-log", log, "-q"])
+    with open(stats) as f:
+        hw = json.load(f)["hw"]
+    with open(log) as f:
+        rows = [json.loads(l) for l in f]
+    if len(rows) != n:
+        sys.exit(f"rtcore_crossval.py: vbsim's ray log has {len(rows)} rays, the trace {n}")
+    return {"cycles": measured_cycle([r["finish"] for r in rows], n), "latency": [r["finish"] - r["start"] for r in rows],
+            "hw": hw}
+
+
+def pearson(a, b):
+    return statistics.correlation(a, b) if len(a) > 2 and len(set(a)) > 1 and len(set(b)) > 1 else float("nan")
+
+
+def busiest_rtcore(args, c, cycles):
+    """Each rtcore unit pool's busy fraction: operations x latency / (units x cycles)."""
+    lp, hp, ist = args[5], args[6], args[7]
+    return {"box (lp)": c.get("lp", 0) * 20 / (lp * cycles), "box (hp)": c.get("hp", 0) * 20 / (hp * cycles),
+            "triangle": c.get("ist", 0) * 32 / (ist * cycles)}
+
+
+def row(name, bound, args, rt, vb, n):
+    c, hw = rt["counts"], vb["hw"]
+    k = n - TAIL_RAYS
+    rt_cpr, vb_cpr = rt["cycles"] / k, vb["cycles"] / k
+    both = [i for i in range(n) if rt["latency"][i] is not None]
+    rt_lat, vb_lat = [rt["latency"][i] for i in both], [vb["latency"][i] for i in both]
+    rt_nodes = c.get("lp", 0) + c.get("hp", 0)
+    rt_misses = sum(v for k, v in c.items() if k.endswith(".miss"))
+    rt_busy = busiest_rtcore(args, c, rt["end"])
+    vb_busy = {k: hw["utilisation"][k] for k in ("box", "triangle")}
+    port = hw["memory"]["port"]
+    return {
+        "regime": name, "bound": bound, "args": " ".join(map(str, args)),
+        "rtcore_cycles_per_ray": rt_cpr, "vbsim_cycles_per_ray": vb_cpr,
+        "difference": vb_cpr / rt_cpr - 1, "latency_correlation": pearson(rt_lat, vb_lat),
+        "rtcore_mean_latency": statistics.fmean(rt_lat), "vbsim_mean_latency": statistics.fmean(vb_lat),
+        "rtcore_nodes_per_ray": rt_nodes / n, "vbsim_box_ops_per_ray": hw["units"]["box"]["ops"] / n,
+        "rtcore_triangles_per_ray": c.get("ist", 0) / n, "vbsim_triangles_per_ray": hw["units"]["triangle"]["ops"] / n,
+        "rtcore_l1_misses": rt_misses, "vbsim_l1_misses": port["l1"]["misses"], "vbsim_dram_reads": port["dram"]["reads"],
+        "rtcore_l1_misses_per_ray": rt_misses / n, "vbsim_l1_misses_per_ray": port["l1"]["misses"] / n,
+        "rtcore_lp_per_ray": c.get("lp", 0) / n, "rtcore_hp_per_ray": c.get("hp", 0) / n,
+        "rtcore_busy": rt_busy, "vbsim_busy": vb_busy,
+    }
+
+
+def explain(r):
+    """What the measured counts say about the residual."""
+    lp_units, hp_units = (int(x) for x in r["args"].split()[5:7])
+    rt_unit, rt_b = max(r["rtcore_busy"].items(), key=lambda kv: kv[1])
+    vb_unit, vb_b = max(r["vbsim_busy"].items(), key=lambda kv: kv[1])
+    tri = r["vbsim_triangles_per_ray"] / r["rtcore_triangles_per_ray"] - 1
+    box = r["vbsim_box_ops_per_ray"] / r["rtcore_nodes_per_ray"] - 1
+    parts = [f"busiest units: rtcore's {rt_unit} {rt_b:.0%}, vbsim's {vb_unit} {vb_b:.0%}"]
+    if rt_unit == vb_unit == "triangle" and min(rt_b, vb_b) >= 0.9:
+        parts.append(f"both bound by the triangle units, so the cycles follow the triangle tests: vbsim's tree "
+                     f"needs {tri:+.1%} a ray, the cycles differ by {r['difference']:+.1%}")
+    elif vb_unit == "box" and rt_unit.startswith("box") and min(rt_b, vb_b) >= 0.9:
+        pool, units = ("lp", lp_units) if rt_unit == "box (lp)" else ("hp", hp_units)
+        rt_pool = r[f"rtcore_{pool}_per_ray"]
+        predicted = (r["vbsim_box_ops_per_ray"] / lp_units) / (rt_pool / units) - 1
+        parts.append(f"both bound by box units: vbsim's one pool of {lp_units} does every node test "
+                     f"({r['vbsim_box_ops_per_ray']:.2f} a ray), rtcore's {pool} pool of {units} only its "
+                     f"{rt_pool:.2f} (its other pool the other {r['rtcore_nodes_per_ray'] - rt_pool:.2f}, in "
+                     f"parallel): the work alone predicts {predicted:+.1%}, measured {r['difference']:+.1%}; the "
+                     "rest is the two pools' sharing, which one pool cannot express")
+    elif r["rtcore_l1_misses_per_ray"] > 1:
+        parts.append(f"memory-bound: vbsim misses {r['vbsim_l1_misses_per_ray']:.2f} 64-byte lines a ray, each "
+                     f"a DRAM read of 321 cycles (64 bytes x 5 + 1); rtcore {r['rtcore_l1_misses_per_ray']:.2f} "
+                     "objects a ray, each of 8 to 36 bytes (40 to 180 cycles), fetched one by one")
+    else:
+        steps = r["rtcore_nodes_per_ray"] + r["rtcore_triangles_per_ray"]
+        extra = (r["rtcore_mean_latency"] - r["vbsim_mean_latency"]) / steps
+        parts.append(f"no unit saturated: a ray spends {r['rtcore_mean_latency']:.0f} cycles in a slot in "
+                     f"rtcore, {r['vbsim_mean_latency']:.0f} in vbsim, {extra:+.1f} cycles more per step (of "
+                     f"{steps:.2f} a ray) in rtcore's traversal and intersection controllers and their FIFOs, "
+                     "which vbsim does not model")
+    parts.append(f"(vbsim's tree, Embree's with at most 4 triangles a leaf, needs {box:+.1%} node tests and "
+                 f"{tri:+.1%} triangle tests a ray against rtcore's sweep-SAH tree)")
+    return "; ".join(parts)
+
+
+def page(rows, n, scene, rays_file):
+    out = ["# Timing cross-validated against rtcore-systemc", "",
+           "Regenerated by `scripts/rtcore_crossval.py` (it builds rtcore-systemc from a source",
+           "checkout given by `--rtcore-src` or `VBSIM_RTCORE_SRC`, and is skipped without one). "
+           f"{n:,} primary rays of `vbsim gen paths --rays {n} --seed 1` over `{os.path.relpath(scene, ROOT)}`; "
+           "vbsim runs the configuration "
+           "`scripts/rtcore_config.py ARGS` prints (the `rtcore` preset, `docs/hw-model.md`, "
+           "\"Modelling rtcore-systemc\"), method `none`, every ray independent.", "",
+           f"rtcore stops once its last ray is sent, so cycles per ray are, on both sides, the cycle by which all "
+           f"but the last {TAIL_RAYS} rays had finished over their number; latency is a ray's cycles from entering "
+           "a slot to its result, and its correlation the Pearson coefficient over the rays rtcore finished. "
+           "Node and triangle tests and misses are whole-run counts.", "",
+           "| regime | rtcore arguments | rtcore cycles/ray | vbsim cycles/ray | difference | latency correlation | "
+           "node tests/ray rtcore, vbsim | triangle tests/ray rtcore, vbsim | L1 misses rtcore, vbsim |",
+           "|---|---|---|---|---|---|---|---|---|"]
+    for r in rows:
+        out.append(f"| {r['regime']} ({r['bound']}) | `{r['args']}` | {r['rtcore_cycles_per_ray']:.2f} | "
+                   f"{r['vbsim_cycles_per_ray']:.2f} | {r['difference']:+.1%} | {r['latency_correlation']:.3f} | "
+                   f"{r['rtcore_nodes_per_ray']:.2f}, {r['vbsim_box_ops_per_ray']:.2f} | "
+                   f"{r['rtcore_triangles_per_ray']:.2f}, {r['vbsim_triangles_per_ray']:.2f} | "
+                   f"{r['rtcore_l1_misses']:,}, {r['vbsim_l1_misses']:,} |")
+    within = sum(abs(r["difference"]) <= 0.05 for r in rows)
+    out += ["", f"Within 5%: {within} of {len(rows)} regimes.", "", "## What explains each residual", ""]
+    for r in rows:
+        out.append(f"- **{r['regime']}** ({r['difference']:+.1%}): {explain(r)}.")
+    out += ["", "rtcore's node tests count each pool's operations (a node's two boxes each); vbsim's count its box "
+            "unit's operations (two boxes each) including the root's at dispatch. rtcore's L1 misses are its three "
+            "object caches' (a bounding box, node record or triangle each); vbsim's are 64-byte lines of its one L1.", ""]
+    return "\n".join(out)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--rtcore-src", default=os.environ.get("VBSIM_RTCORE_SRC"))
+    ap.add_argument("--rays", type=int, default=16384)
+    ap.add_argument("--scene", default=os.path.join(ROOT, "traces", "wuson", "WusonOBJ.obj"))
+    ap.add_argument("--vbsim", default=os.path.join(ROOT, "build", "vbsim"))
+    ap.add_argument("--work", default=os.path.join(ROOT, "build", "rtcore-crossval"))
+    ap.add_argument("--out", default=os.path.join(ROOT, "docs", "results", "rtcore-crossval.md"))
+    a = ap.parse_args()
+    src = a.rtcore_src
+    if not src or not os.path.exists(os.path.join(src, "testbench", "tb_top.cpp")):
+        print("rtcore_crossval.py: skipped: no rtcore-systemc source (give --rtcore-src DIR or VBSIM_RTCORE_SRC: "
+              "a checkout of github lashhw/rtcore-systemc with its submodules, and libmpfr-dev installed)")
+        return 0
+    if not os.path.exists(os.path.join(src, "src", "third_party", "bvh", "CMakeLists.txt")):
+        sys.exit(f"rtcore_crossval.py: {src} has no src/third_party/bvh: check out its submodules")
+    os.makedirs(a.work, exist_ok=True)
+    tb_top = build_rtcore(os.path.abspath(src), a.work)
+    trace, ray_file, mesh, n = make_rays(a.vbsim, os.path.abspath(a.scene), a.rays, a.work)
+    rows = []
+    for name, bound, args in REGIMES:
+        rt = run_rtcore(tb_top, mesh, ray_file, args, n)
+        vb = run_vbsim(a.vbsim, trace, args, a.work, n)
+        rows.append(row(name, bound, args, rt, vb, n))
+        r = rows[-1]
+        print(f"{name}: rtcore {r['rtcore_cycles_per_ray']:.2f}, vbsim {r['vbsim_cycles_per_ray']:.2f} cycles/ray "
+              f"({r['difference']:+.1%}), latency correlation {r['latency_correlation']:.3f}", flush=True)
+    tmp = a.out + ".tmp"
+    with open(tmp, "w") as f:
+        f.write(page(rows, n, a.scene, ray_file))
+    os.replace(tmp, a.out)
+    with open(os.path.join(a.work, "rows.json"), "w") as f:
+        json.dump(rows, f, indent=1)
+    print(f"rtcore_crossval.py: wrote {a.out}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
