@@ -1,0 +1,66 @@
+#!/usr/bin/python3
+"""scripts/rtcore_crossval.py without rtcore-systemc: it skips with a message and writes
+nothing; its reading of rtcore's log and its measured cycle, on a log made by hand."""
+import os
+import subprocess
+import sys
+import tempfile
+import unittest
+from unittest import mock
+
+ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
+sys.path.insert(0, os.path.join(ROOT, "scripts"))
+import rtcore_crossval  # noqa: E402
+
+# Three rays in two slots: ray 0 in slot 0 (sent 1, done 50), ray 1 in slot 1 (sent 3,
+# done 40), ray 2 in slot 1 again (sent 41, done 90); then the counts rtcore prints.
+LOG = """m_shader @ 1,READ: ray sent, id=0 (count=1)
+m_shader @ 3,READ: ray sent, id=1 (count=2)
+m_shader @ 40,READ: result received, id=1
+m_shader @ 41,READ: ray sent, id=1 (count=3)
+m_shader @ 50,READ: result received, id=0
+m_shader @ 90,READ: result received, id=1
+m_rtcore.m_ist_l1c:
+miss = 7
+hit = 3
+m_rtcore.m_bbox_l1c_lp:
+miss = 2
+hit = 20
+ist processed 12 triangles
+hp processed 4 nodes
+lp processed 9 nodes
+"""
+
+
+class CrossvalTest(unittest.TestCase):
+    def test_skips_without_the_source(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            out = os.path.join(tmp, "page.md")
+            env = {k: v for k, v in os.environ.items() if k != "VBSIM_RTCORE_SRC"}
+            r = subprocess.run(["/usr/bin/python3", os.path.join(ROOT, "scripts", "rtcore_crossval.py"), "--out", out],
+                               capture_output=True, text=True, env=env)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            self.assertIn("skipped", r.stdout)
+            self.assertFalse(os.path.exists(out))
+
+    def test_reads_rtcores_log(self):
+        done = mock.Mock(stdout=LOG, returncode=0)
+        with mock.patch.object(rtcore_crossval, "run", return_value=done), \
+                mock.patch.object(rtcore_crossval, "TAIL_RAYS", 1):
+            got = rtcore_crossval.run_rtcore("/x/tb_top", "m.ply", "r.bin", [512] * 3 + [0.5, 0.47, 4, 4, 1], 3)
+        self.assertEqual(got["latency"], [49, 37, 49])
+        self.assertEqual(got["cycles"], 50)  # all but the last 1 of 3 rays finished by cycle 50
+        self.assertEqual(got["end"], 90)
+        self.assertEqual(got["counts"], {"m_rtcore.m_ist_l1c.miss": 7, "m_rtcore.m_ist_l1c.hit": 3,
+                                         "m_rtcore.m_bbox_l1c_lp.miss": 2, "m_rtcore.m_bbox_l1c_lp.hit": 20,
+                                         "ist": 12, "hp": 4, "lp": 9})
+
+    def test_measured_cycle_needs_enough_finished_rays(self):
+        with mock.patch.object(rtcore_crossval, "TAIL_RAYS", 2):
+            self.assertEqual(rtcore_crossval.measured_cycle([30, 10, 20, 40], 5), 30)  # the 3rd of 5
+            with self.assertRaises(SystemExit):
+                rtcore_crossval.measured_cycle([10], 5)
+
+
+if __name__ == "__main__":
+    unittest.main()
