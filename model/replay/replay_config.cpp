@@ -48,6 +48,17 @@ void apply_replay_config(const nlohmann::json& j, const std::string& file, Repla
   f.name("hitpoint", [&](const std::string& s) { return parse_hit_point_mode(s, opt.hit_point); },
          "given, ray, barycentric");
   f.boolean("shadow_any_hit", opt.any_hit_for_shadow);
+  if (const auto* b = f.get("bvh")) {
+    Fields fb(*b, file, "bvh");
+    fb.name("quality", [&](const std::string& s) { return parse_bvh_quality(s, opt.bvh.quality); },
+            "low, medium, high");
+    fb.integer("max_leaf_size", opt.bvh.max_leaf_size);
+    fb.number("traversal_cost", opt.bvh.traversal_cost);
+    if (!(opt.bvh.traversal_cost > 0 && opt.bvh.traversal_cost <= 1000))
+      fail(file, "bvh.traversal_cost", fmt::format("must be in (0, 1000], got {}", opt.bvh.traversal_cost));
+    if (opt.bvh.max_leaf_size < 1 || opt.bvh.max_leaf_size > 32)
+      fail(file, "bvh.max_leaf_size", fmt::format("must be 1 to 32, got {}", opt.bvh.max_leaf_size));
+  }
   f.number("tmin_eps", m.tmin_eps);
   f.number("offset_normal_eps", m.offset_normal_eps);
   f.number("offset_direction_eps", m.offset_direction_eps);

@@ -4,6 +4,7 @@
 
 #include "datapath/self_intersection_method.h"
 #include "datapath/testers.h"
+#include "scene/bvh.h"
 #include "trace/parent_ray_store.h"
 
 namespace vbsim {
@@ -20,6 +21,9 @@ struct ReplayOptions {
   TesterKind tester = TesterKind::ThreeHalfPlane;
   HitPointMode hit_point = HitPointMode::Given;
   bool any_hit_for_shadow = true;  ///< shadow rays stop at the first accepted hit
+  /// The tree the trace's scene is built into (replay and render). Closest
+  /// hits do not depend on it (docs/hw-model.md, "The BVH"); the work does.
+  BvhBuildOptions bvh;
   /// Rays kept for children to look their parent up in (ParentRayStore): a
   /// resource limit, not part of the echoed configuration; a parent further
   /// back is an error, never a silently different answer.

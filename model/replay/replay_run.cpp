@@ -12,10 +12,10 @@
 
 namespace vbsim {
 
-SceneAndBvh load_trace_scene(const TraceHeader& header) {
+SceneAndBvh load_trace_scene(const TraceHeader& header, const BvhBuildOptions& bvh) {
   SceneAndBvh sb;
   sb.scene = load_scene(header.scene_path, header.transform);
-  sb.bvh = build_bvh(sb.scene);
+  sb.bvh = build_bvh(sb.scene, bvh);
   return sb;
 }
 

@@ -22,7 +22,7 @@ struct SceneAndBvh {
   Scene scene;
   Bvh bvh;
 };
-SceneAndBvh load_trace_scene(const TraceHeader& header);
+SceneAndBvh load_trace_scene(const TraceHeader& header, const BvhBuildOptions& bvh = {});
 
 /// One line of the hits file: id, prim, t, u, v, front, rejected, and verdict
 /// when scored; `reversed` for reverse-shadow rays (their t is along the

@@ -32,6 +32,7 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "datapath/triangle.h"
@@ -83,8 +84,21 @@ struct BvhTriangle {
 };
 static_assert(sizeof(BvhTriangle) == 40, "BvhTriangle is 40 bytes in the hardware layout");
 
+/// Embree's build quality (RTCBuildQuality): Low is its Morton builder, Medium
+/// and High its binned SAH builders; each gives another tree of the same scene.
+enum class BvhQuality { Low, Medium, High };
+const char* bvh_quality_name(BvhQuality q);              ///< "low", "medium", "high"
+bool parse_bvh_quality(const std::string& s, BvhQuality& out);
+
 struct BvhBuildOptions {
-  int max_leaf_size = 4;  ///< triangles per leaf at most (1..65535)
+  int max_leaf_size = 4;  ///< triangles per leaf at most (1..65535; Embree builds leaves of at most 32)
+  BvhQuality quality = BvhQuality::High;
+  /// The SAH's cost of a node step against one triangle test's 1 (Embree's
+  /// traversalCost): larger gives fewer, larger leaves (up to max_leaf_size).
+  float traversal_cost = 1.0f;
+  bool operator==(const BvhBuildOptions& o) const {
+    return max_leaf_size == o.max_leaf_size && quality == o.quality && traversal_cost == o.traversal_cost;
+  }
 };
 
 struct Bvh {
@@ -98,7 +112,7 @@ struct Bvh {
   int depth = 0;
 };
 
-/// Builds the BVH of `scene` with rtcBuildBVH (SAH, high quality). Every
+/// Builds the BVH of `scene` with rtcBuildBVH (`options`: quality and leaf size). Every
 /// triangle appears in exactly one leaf; an empty scene gives no nodes and no triangles.
 Bvh build_bvh(const Scene& scene, const BvhBuildOptions& options = {});
 

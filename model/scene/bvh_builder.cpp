@@ -1,4 +1,5 @@
-// build_bvh: Embree's rtcBuildBVH (binned SAH, high quality, branching factor 2)
+// build_bvh: Embree's rtcBuildBVH (binned SAH at high quality by default, or the
+// options' quality and leaf size; branching factor 2)
 // builds a temporary tree in Embree's thread-local allocator; this file then
 // flattens it depth-first into the layout documented in bvh.h.
 //
@@ -31,6 +32,7 @@ namespace vbsim {
 namespace {
 
 constexpr unsigned kMaxDepth = 32;  // Embree's default depth limit for rtcBuildBVH
+constexpr int kMaxLeafSize = 32;    // RTC_BUILD_MAX_PRIMITIVES_PER_LEAF: Embree's builders stop there
 
 // Temporary node, allocated in Embree's thread-local allocator (freed with the RTCBVH).
 struct BuildNode {
@@ -186,10 +188,26 @@ struct BvhHandle {
 
 }  // namespace
 
+const char* bvh_quality_name(BvhQuality q) {
+  return q == BvhQuality::Low ? "low" : q == BvhQuality::Medium ? "medium" : "high";
+}
+
+bool parse_bvh_quality(const std::string& s, BvhQuality& out) {
+  for (BvhQuality q : {BvhQuality::Low, BvhQuality::Medium, BvhQuality::High})
+    if (s == bvh_quality_name(q)) {
+      out = q;
+      return true;
+    }
+  return false;
+}
+
 Bvh build_bvh(const Scene& scene, const BvhBuildOptions& options) {
-  if (options.max_leaf_size < 1 || options.max_leaf_size > 0xffff)
-    throw std::invalid_argument(
-        fmt::format("BvhBuildOptions.max_leaf_size must be in 1..65535, got {}", options.max_leaf_size));
+  if (!(options.traversal_cost > 0 && options.traversal_cost <= 1000))
+    throw std::invalid_argument(fmt::format("BvhBuildOptions.traversal_cost must be in (0, 1000], got {}",
+                                            options.traversal_cost));
+  if (options.max_leaf_size < 1 || options.max_leaf_size > kMaxLeafSize)
+    throw std::invalid_argument(fmt::format("BvhBuildOptions.max_leaf_size must be in 1..{}, got {}", kMaxLeafSize,
+                                            options.max_leaf_size));
 
   Bvh bvh;
   if (scene.triangles.empty()) return bvh;  // no nodes, no triangles, depth 0
@@ -213,11 +231,15 @@ Bvh build_bvh(const Scene& scene, const BvhBuildOptions& options) {
 
   BuildContext context;
   RTCBuildArguments args = rtcDefaultBuildArguments();
-  args.buildQuality = RTC_BUILD_QUALITY_HIGH;
+  args.buildQuality = options.quality == BvhQuality::Low      ? RTC_BUILD_QUALITY_LOW
+                      : options.quality == BvhQuality::Medium ? RTC_BUILD_QUALITY_MEDIUM
+                                                              : RTC_BUILD_QUALITY_HIGH;
   args.maxBranchingFactor = 2;
   args.maxDepth = kMaxDepth;
   args.minLeafSize = 1;
   args.maxLeafSize = static_cast<unsigned>(options.max_leaf_size);
+  args.traversalCost = options.traversal_cost;
+  args.intersectionCost = 1.0f;
   args.bvh = handle.bvh;
   args.primitives = prims.data();
   args.primitiveCount = prims.size();

@@ -38,6 +38,12 @@ void add_method_options(CLI::App& app, MethodOptions& o, const std::string& defa
   app.add_option("--vb-min-exponent", o.vb_min_exponent, "validity-bit: minimum biased exponent [110]");
   app.add_option("--vb-tests", o.vb_tests, "validity-bit: epsilon tests, comma list of normal,ray,component [normal,ray]");
   app.add_option("--vb-component-scale", o.vb_component_scale, "validity-bit: component test multiplier [0.577]");
+  app.add_option("--bvh-quality", o.bvh_quality,
+                 "the BVH's build: Embree's low (Morton), medium or high (binned SAH) quality; hits do not depend "
+                 "on it, the work does [high]");
+  app.add_option("--bvh-leaf-size", o.bvh_leaf_size, "the BVH's largest leaf, 1 to 32 triangles [4]");
+  app.add_option("--bvh-traversal-cost", o.bvh_traversal_cost,
+                 "the BVH builder's cost of a node step against a triangle test's 1: larger gives larger leaves [1]");
   add_parent_window_option(app, o.parent_window);
   add_score_incomplete_option(app, o.score_incomplete);
 }
@@ -78,6 +84,9 @@ void apply_command_line(const MethodOptions& o, ReplayOptions& opt) {
   if (o.vb_guard_bits) j["validity_bit"]["guard_bits"] = *o.vb_guard_bits;
   if (o.vb_min_exponent) j["validity_bit"]["min_exponent"] = *o.vb_min_exponent;
   if (o.vb_component_scale) j["validity_bit"]["component_scale"] = *o.vb_component_scale;
+  if (o.bvh_quality) j["bvh"]["quality"] = *o.bvh_quality;
+  if (o.bvh_leaf_size) j["bvh"]["max_leaf_size"] = *o.bvh_leaf_size;
+  if (o.bvh_traversal_cost) j["bvh"]["traversal_cost"] = *o.bvh_traversal_cost;
   if (o.vb_tests) {
     nlohmann::json tests = {{"normal", false}, {"ray", false}, {"component", false}};
     std::stringstream in(*o.vb_tests);

@@ -88,11 +88,11 @@ int run_render(const RenderArgs& a) {
     const TraceHeader header = open_trace(a.scene)->header();
     trace_scene = header.scene_path;
     inputs.push_back(trace_scene);
-    sb = load_trace_scene(header);
+    sb = load_trace_scene(header, opt.bvh);
     if (header.light) rs.light = {RenderLight::Kind::Point, *header.light};
   } else {
     sb.scene = load_scene(a.scene);
-    sb.bvh = build_bvh(sb.scene);
+    sb.bvh = build_bvh(sb.scene, opt.bvh);
   }
   check_output_paths({{"scene", a.scene}, {"option '--config'", a.method.config},
                       {"scene of the trace", trace_scene}},

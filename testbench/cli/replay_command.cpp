@@ -189,7 +189,7 @@ int run_replay_command(const ReplayArgs& a) {
   if (!a.hits.empty()) hits_file = std::make_unique<AtomicOutputFile>(a.hits);
   for (const std::string* later : {&a.timeline, &a.vcd})  // written at the end: creatable now
     if (!later->empty()) AtomicOutputFile(*later).discard();
-  const SceneAndBvh sb = load_trace_scene(file->header());
+  const SceneAndBvh sb = load_trace_scene(file->header(), opt.bvh);
   // Every ray passes the consistency checks: a child before its parent is an
   // error, the other checks are counted warnings (docs/trace-format.md).
   TraceConsistencyChecker::Options checks;

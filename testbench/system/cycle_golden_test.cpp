@@ -69,6 +69,7 @@ void strip_unpinned(nlohmann::json& j) {
       hw["memory"]["l1"].erase("port_cycles");
       hw["memory"]["l1"].erase("merge_misses");
       hw["memory"]["l2"].erase("merge_misses");
+      j["config"].erase("bvh");
       for (const char* f : {"rays_per_cycle", "window", "dependencies", "missing_parents", "bundles", "bundle_cycles",
                             "bundle_max", "emission_width", "emission_depth"})
         hw["source"].erase(f);

@@ -426,3 +426,41 @@ TEST_CASE("bvh_stats of the bunny are consistent with its tree", "[bvh]") {
   CHECK(s.sah_cost > 1.0);
   CHECK(format_bvh_stats(s).find("SAH cost") != std::string::npos);
 }
+
+TEST_CASE("BVH build options: Embree's qualities, leaf sizes and traversal costs give other valid trees",
+          "[bvh][bvh-options]") {
+  const Scene bunny = load_scene(kBunnyPath);
+  const BvhStats reference = compute_bvh_stats(build_bvh(bunny));
+  int other_shapes = 0;
+  for (const BvhQuality q : {BvhQuality::Low, BvhQuality::Medium, BvhQuality::High})
+    for (const int leaf : {1, 4, 16, 32})
+      for (const float cost : {1.0f, 8.0f}) {
+        INFO(bvh_quality_name(q) << ", leaves up to " << leaf << ", traversal cost " << cost);
+        BvhBuildOptions o;
+        o.quality = q;
+        o.max_leaf_size = leaf;
+        o.traversal_cost = cost;
+        const Bvh bvh = build_bvh(bunny, o);
+        check_structure(bunny, bvh, leaf);  // every triangle once, boxes exact, leaves within the limit
+        const BvhStats s = compute_bvh_stats(bvh);
+        other_shapes += s.nodes != reference.nodes || s.depth != reference.depth;
+        if (leaf == 1) CHECK(s.max_leaf_size == 1);
+      }
+  CHECK(other_shapes >= 10);
+  // A higher traversal cost makes larger leaves (SAH), up to the limit.
+  BvhBuildOptions cheap, dear;
+  cheap.max_leaf_size = dear.max_leaf_size = 16;
+  dear.traversal_cost = 8;
+  CHECK(compute_bvh_stats(build_bvh(bunny, dear)).average_leaf_size >
+        2 * compute_bvh_stats(build_bvh(bunny, cheap)).average_leaf_size);
+  BvhBuildOptions bad;
+  bad.max_leaf_size = 33;
+  CHECK_THROWS_AS(build_bvh(bunny, bad), std::invalid_argument);
+  bad = {};
+  bad.traversal_cost = 0;
+  CHECK_THROWS_AS(build_bvh(bunny, bad), std::invalid_argument);
+  BvhQuality q;
+  CHECK(parse_bvh_quality("medium", q));
+  CHECK(q == BvhQuality::Medium);
+  CHECK_FALSE(parse_bvh_quality("best", q));
+}

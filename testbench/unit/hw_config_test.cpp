@@ -6,6 +6,7 @@
 
 #include "hw/hw_config.h"
 #include "replay/replay_config.h"
+#include "replay/replay_stats.h"
 
 using namespace vbsim;
 using namespace vbsim::hw;
@@ -96,4 +97,25 @@ TEST_CASE("a replay config file may carry an hw object", "[hwconfig]") {
   ReplayOptions opt;
   CHECK_NOTHROW(apply_replay_config(nlohmann::json::parse(R"({"method": "primid", "hw": {"cores": 2}})"), "f", opt));
   CHECK(opt.method.primid);
+}
+
+TEST_CASE("a replay config's bvh build options are read, checked and echoed", "[hwconfig][bvh-options]") {
+  ReplayOptions opt;
+  apply_replay_config(nlohmann::json::parse(R"({"bvh": {"quality": "low", "max_leaf_size": 16, "traversal_cost": 4}})"),
+                      "f", opt);
+  CHECK(opt.bvh.quality == BvhQuality::Low);
+  CHECK(opt.bvh.max_leaf_size == 16);
+  CHECK(opt.bvh.traversal_cost == 4.0f);
+  const nlohmann::json echo = replay_config_json(opt)["bvh"];
+  CHECK(echo == nlohmann::json::parse(R"({"quality": "low", "max_leaf_size": 16, "traversal_cost": 4.0})"));
+  ReplayOptions back;
+  apply_replay_config(nlohmann::json{{"bvh", echo}}, "f", back);
+  CHECK(back.bvh == opt.bvh);
+  for (const char* bad : {R"({"bvh": {"quality": "best"}})", R"({"bvh": {"max_leaf_size": 33}})",
+                          R"({"bvh": {"traversal_cost": 0}})", R"({"bvh": {"leaves": 2}})"}) {
+    INFO(bad);
+    ReplayOptions o;
+    CHECK_THROWS_WITH(apply_replay_config(nlohmann::json::parse(bad), "cfg.json", o),
+                      Catch::StartsWith("cfg.json: field 'bvh."));
+  }
 }
