@@ -115,7 +115,7 @@ class BvhStepper {
     tester_.emplace(ray_);
     box_.emplace(ray_);
     ++tc.box_tests;
-    if (!units.root_box(ray_, *box_, bvh_->root_bounds, tmax_)) return done();
+    if (!units.root_box(ray_, *box_, bvh_->root_bounds, cull_limit(tmax_))) return done();
     return visit(bvh_->root);
   }
 
@@ -126,7 +126,7 @@ class BvhStepper {
     ++tc_->node_visits;
     tc_->box_tests += 2;
     float t0, t1;
-    const unsigned hit = units.node_boxes(ray_, *box_, current_.index, n, tmax_, t0, t1) & 3u;
+    const unsigned hit = units.node_boxes(ray_, *box_, current_.index, n, cull_limit(tmax_), t0, t1) & 3u;
     if (hit == 0u) return pop();
     // One or both children met: descend into the nearer (child 0 on a tie),
     // push the farther when both are met. Written without branches on the
@@ -153,9 +153,10 @@ class BvhStepper {
     const BvhTriangle& bt = bvh_->tris[i];
     ++tc_->triangle_tests;
     Hit h;
-    if (!units.triangle(ray_, *tester_, i, bt, tmax_, h)) return out;
-    out.candidate = true;
+    if (!units.triangle(ray_, *tester_, i, bt, candidate_limit(best_, tmax_), h)) return out;
     h.prim = static_cast<int32_t>(bt.prim);
+    if (!nearer_than_best(h, best_, tmax_)) return out;  // a tie with a lower id already held (closest_hit.h)
+    out.candidate = true;
     const uint64_t suspects_before = cc_->suspects;
     const bool accept = filter_->accept(ray_, bt.tri, h.prim, h, *cc_, [&](const AvoidanceConfig& cfg) {
       return units.avoidance(cfg, ray_, i, bt.tri, h);
@@ -229,7 +230,7 @@ class BvhStepper {
       --sp_;
       --onchip_;
       ++tc_->stack_pops;
-      if (stack_[sp_].t > tmax_) continue;
+      if (stack_[sp_].t > cull_limit(tmax_)) continue;
       return visit(BvhRef{stack_[sp_].index, stack_[sp_].count});
     }
   }

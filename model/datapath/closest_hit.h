@@ -35,6 +35,35 @@ struct TraversalCounters {
 
 constexpr int kTraversalStackDepth = 128;
 
+// Ties. A closest-hit search keeps, of candidates at the same distance, the one
+// of the lowest primitive id, so that its hit does not depend on the order the
+// tree presents triangles in (any BVH gives the same hit; docs/hw-model.md,
+// "The BVH"). Once it holds a hit at `tmax`, the tester is asked for an
+// interval a few ulps beyond tmax (candidate_limit: a tester's scaled interval
+// check rounds, and must not drop a candidate whose distance comes out at tmax),
+// and of what it answers only a candidate before tmax, or at tmax with a lower
+// id, is taken (nearer_than_best). Boxes are culled
+// only beyond cull_limit(tmax), tmax widened as the box test widens a box's exit:
+// a box's entry and a triangle on its face are rounded apart by a few ulps, and
+// a box entered just beyond the hit must still be visited for a triangle at the
+// hit's distance to be found whatever box holds it.
+// An any-hit search stops at the first accepted hit, whatever its id.
+
+/// The upper bound to test a triangle against: the ray's tmax, or tmax widened
+/// as a box's exit is once the search holds a hit at tmax (so that a tie is seen).
+inline float candidate_limit(const Hit& best, float tmax) {
+  return best.prim >= 0 ? tmax * RayBoxTester::kWiden : tmax;
+}
+
+/// The distance beyond which boxes and stack entries are culled (above).
+inline float cull_limit(float tmax) { return tmax * RayBoxTester::kWiden; }
+
+/// Whether candidate `h` (inside candidate_limit) is nearer than `best` at
+/// `tmax`: closer, or at the same distance with a lower primitive id.
+inline bool nearer_than_best(const Hit& h, const Hit& best, float tmax) {
+  return h.t < tmax || (h.t == tmax && best.prim >= 0 && h.prim < best.prim);
+}
+
 /// Throws std::runtime_error when `bvh` is deeper than the traversal stack. A
 /// search keeps at most one stack entry per node fetched on its current path,
 /// so at most depth - 1 entries (Bvh::depth counts the leaf's level too), and it
@@ -45,7 +74,8 @@ inline void check_traversal_depth(const Bvh& bvh) {
     throw std::runtime_error("BVH depth exceeds the traversal stack of 128 entries");
 }
 
-/// Closest accepted hit of `ray` (any accepted hit when `any_hit`); miss: prim -1.
+/// Closest accepted hit of `ray` (any accepted hit when `any_hit`); miss: prim -1;
+/// at equal distances the lowest primitive id (ties, above).
 /// Each interior node is one fetch that tests both children's boxes; the nearer
 /// child is visited first and the farther is skipped later if a hit has come
 /// closer than its entry.
@@ -72,7 +102,7 @@ Hit closest_hit(const Bvh& bvh, const Ray& ray, const CandidateFilter& filter,
     tc.stack_pops += pushes - static_cast<uint64_t>(sp);  // what is left was never popped
     return best;
   };
-  if (!box.hits(bvh.root_bounds, tmax)) return finish();
+  if (!box.hits(bvh.root_bounds, cull_limit(tmax))) return finish();
   // Held in registers: the tester's out-of-line calls could otherwise force re-reads.
   const BvhNode* const nodes = bvh.nodes.data();
   const BvhTriangle* const tris = bvh.tris.data();
@@ -82,7 +112,7 @@ Hit closest_hit(const Bvh& bvh, const Ray& ray, const CandidateFilter& filter,
       const BvhNode& n = nodes[ref.index];
       ++node_visits;
       float t0, t1;
-      const unsigned hit = box.hits(n, tmax, t0, t1);
+      const unsigned hit = box.hits(n, cull_limit(tmax), t0, t1);
       if (hit != 0u) {
         // Descend into the nearer child met (child 0 on a tie) and write the
         // other to the stack, keeping it only when both were met. Selects, not
@@ -103,8 +133,9 @@ Hit closest_hit(const Bvh& bvh, const Ray& ray, const CandidateFilter& filter,
         const BvhTriangle& bt = tris[i];
         ++triangle_tests;
         Hit h;
-        if (!tester.intersect(bt.tri, tmax, h)) continue;
+        if (!tester.intersect(bt.tri, candidate_limit(best, tmax), h)) continue;
         h.prim = static_cast<int32_t>(bt.prim);
+        if (!nearer_than_best(h, best, tmax)) continue;  // a tie with a lower id already held
         if (!filter.accept(ray, bt.tri, h.prim, h, cc)) continue;
         best = h;
         tmax = h.t;
@@ -115,7 +146,7 @@ Hit closest_hit(const Bvh& bvh, const Ray& ray, const CandidateFilter& filter,
     do {
       if (sp == 0) return finish();
       --sp;
-    } while (stack[sp].t > tmax);
+    } while (stack[sp].t > cull_limit(tmax));
     ref = BvhRef{stack[sp].index, stack[sp].count};
   }
 }

@@ -47,7 +47,9 @@ struct BoxOp {
   const Bounds3f* root = nullptr;
   const Ray* ray = nullptr;               ///< the ray as the slot holds it
   const RayBoxTester* latched = nullptr;  ///< the ray's latched box-test state (o, 1/d, tmin)
-  float tmax = 0.0f;                      ///< the interval's end now (the closest accepted hit's t)
+  /// The bound to cull at: the ray's tmax, or once it holds a hit, that hit's
+  /// t widened as a box's exit is (datapath/closest_hit.h, cull_limit).
+  float tmax = 0.0f;
   uint64_t ready = 0, now = 0;
 };
 
@@ -66,6 +68,9 @@ struct TriangleOp {
   int32_t prim = 0;
   const Triangle* triangle = nullptr;
   const Ray* ray = nullptr;
+  /// The bound to test against: the ray's tmax, or once the slot holds a hit,
+  /// that hit's t widened by a few ulps, so that a tie is seen (the stepper
+  /// then keeps the lower primitive id; datapath/closest_hit.h, candidate_limit).
   float tmax = 0.0f;
   uint64_t ready = 0, now = 0;
 };

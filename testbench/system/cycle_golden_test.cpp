@@ -58,6 +58,7 @@ void strip_unpinned(nlohmann::json& j) {
   if (j.contains("config")) {
     j["config"].erase("trace");
     j["config"].erase("scene");
+    j["config"].erase("bvh");  // the BVH build options, added later (their defaults build the pinned tree)
     // Configuration fields added after the files were pinned (their defaults are the pinned behaviour).
     if (j["config"].contains("hw")) {
       nlohmann::json& hw = j["config"]["hw"];
@@ -69,7 +70,6 @@ void strip_unpinned(nlohmann::json& j) {
       hw["memory"]["l1"].erase("port_cycles");
       hw["memory"]["l1"].erase("merge_misses");
       hw["memory"]["l2"].erase("merge_misses");
-      j["config"].erase("bvh");
       for (const char* f : {"rays_per_cycle", "window", "dependencies", "missing_parents", "bundles", "bundle_cycles",
                             "bundle_max", "emission_width", "emission_depth"})
         hw["source"].erase(f);
