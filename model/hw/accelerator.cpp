@@ -333,6 +333,8 @@ HwCounters Accelerator::chip_counters() const {
     add_unit(c.box, core.builtin_box(), k.replaced_units[CoreCounters::kBox]);
     add_unit(c.triangle, core.builtin_triangle(), k.replaced_units[CoreCounters::kTriangle]);
     add_unit(c.avoidance, core.builtin_avoidance(), k.replaced_units[CoreCounters::kAvoidance]);
+    c.controller.ops += k.controller.ops;
+    c.controller.wait_cycles += k.controller.wait_cycles;
     for (int i = 0; i < kRayKindCount; ++i) c.avoidance_ops_by_kind[i] += k.avoidance_ops_by_kind[i];
     c.node_fetches += k.node_fetches;
     c.leaf_fetches += k.leaf_fetches;

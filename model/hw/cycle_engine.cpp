@@ -20,6 +20,7 @@
 #include "hw/ray_source.h"
 #include "hw/ray_test_core.h"
 #include "hw/result_sink.h"
+#include "hw/unit_pipelines.h"
 
 #include <systemc>
 
@@ -66,6 +67,9 @@ class Engine final : public CycleEngine, private SourceHost {
     for (const CoreBinding& c : cores_) {
       l1s_.push_back(c.core->l1());
       free_count_.push_back(static_cast<uint32_t>(c.core->free_slots.size()));
+      if (p.config.controller.count > 0)
+        controllers_.emplace_back(UnitConfig{p.config.controller.count, 1, p.config.controller.issue_interval},
+                                  c.core->counters.controller, std::string(c.core->name()) + ".controller");
     }
     slots_.reserve(slots);
     for (uint32_t i = 0; i < slots; ++i)
@@ -234,8 +238,11 @@ class Engine final : public CycleEngine, private SourceHost {
         memory_name(id), bytes, addr, now, ready));
   }
 
-  /// Slot `id`'s next step, s.pending, completes at cycle `at`.
+  /// Slot `id`'s next step, s.pending, completes at cycle `at` (after its
+  /// core's traversal controller has taken it, when the cores have one).
   void schedule_step(uint64_t at, uint32_t id) {
+    if (__builtin_expect(!controllers_.empty(), 0))
+      at = controllers_[slots_[id].core].issue(at, last_handled_) + cfg_.controller.latency;
     // The step's read looks up its first line's L1 and L2 tag sets when it is
     // handled, many events later: ask the host's caches for them now (no
     // effect on any result). The address by table, not by a branch on the
@@ -568,6 +575,7 @@ class Engine final : public CycleEngine, private SourceHost {
   std::function<void(uint64_t)> memory_step_;
   EventWheel events_{resumed_id_ + source_id_};
   std::vector<Slot> slots_;
+  std::vector<UnitPipelines> controllers_;  ///< per core (hw.controller; empty: none)
   bool stopped_ = false;
   uint64_t in_flight_ = 0, done_ = 0, parked_ = 0, last_handled_ = 0;
   RayTimesSink ray_times_;

@@ -197,6 +197,12 @@ void apply_hw_config(const nlohmann::json& j, const std::string& file, HwConfig&
       read_operator_latencies(*o, file, "hw.triangle.operator_latency", cfg.triangle_timing.op);
   }
   read_unit(f, "avoidance", cfg.avoidance);
+  if (const auto* v = f.get("controller")) {
+    Fields fc(*v, file, "hw.controller");
+    fc.integer("count", cfg.controller.count, 0, 64);
+    fc.integer("latency", cfg.controller.latency, 0, 100000);
+    fc.integer("issue_interval", cfg.controller.issue_interval, 1, 100000);
+  }
   read_memory(f, cfg.memory);
   if (const auto* s = f.get("sim")) {
     Fields fs(*s, file, "hw.sim");
@@ -281,6 +287,10 @@ nlohmann::json hw_config_json(const HwConfig& c) {
           {"box", unit(c.box)},
           {"triangle", triangle_json(c)},
           {"avoidance", unit(c.avoidance)},
+          {"controller",
+           {{"count", c.controller.count},
+            {"latency", c.controller.latency},
+            {"issue_interval", c.controller.issue_interval}}},
           {"memory",
            {{"ideal", m.ideal},
             {"ideal_latency", m.ideal_latency},

@@ -58,6 +58,18 @@ struct ShaderConfig {
   uint32_t latency_cycles = 200;
 };
 
+/// Each core's traversal controller: every step of a slot (after dispatch,
+/// after a node's box test, a leaf's tests, a stack refill) passes through it
+/// before the next begins (its read, or the result). `count` controllers per
+/// core, each taking a step every `issue_interval` cycles, a step leaving
+/// `latency` cycles after one takes it; count 0 (the default): none, a step
+/// follows the previous one at once (docs/hw-model.md, "Timing of each step").
+struct ControllerConfig {
+  uint32_t count = 0;
+  uint32_t latency = 0;
+  uint32_t issue_interval = 1;
+};
+
 enum class DispatchPolicy { RoundRobin, LeastLoaded };
 const char* dispatch_policy_name(DispatchPolicy p);
 
@@ -77,6 +89,7 @@ struct HwConfig {
   /// tester of the run (for_tester); the values above hold until then.
   TriangleTiming triangle_timing;
   UnitConfig avoidance{1, 6, 1};
+  ControllerConfig controller;
   MemoryConfig memory;
   uint32_t quantum_cycles = 256;        ///< sim: most cycles the engine runs ahead of SystemC time
   uint32_t latency_bucket_cycles = 32;  ///< sim: width of a latency histogram bucket

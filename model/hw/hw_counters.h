@@ -41,6 +41,7 @@ struct CoreCounters {
   /// unit counts its own.
   enum { kBox, kTriangle, kAvoidance };
   std::array<UnitCounters, 3> replaced_units{};
+  UnitCounters controller;  ///< steps its traversal controllers took, and their waits (hw.controller)
 };
 
 /// What the ray source counted.
@@ -68,6 +69,7 @@ struct HwCounters {
   uint64_t cycles = 0;            ///< cycle at which the last ray finished
   uint64_t rays = 0;              ///< rays finished
   UnitCounters box, triangle, avoidance;
+  UnitCounters controller;  ///< the cores' traversal controllers (none: 0)
   std::array<uint64_t, kRayKindCount> avoidance_ops_by_kind{};  ///< suspects sent to the avoidance unit
   uint64_t node_fetches = 0, leaf_fetches = 0, refill_reads = 0;
   uint64_t memory_wait_cycles = 0;  ///< node and leaf fetches: cycles from request to data

@@ -48,17 +48,22 @@ nlohmann::json hw_stats_json(const HwReport& r) {
   j["units"] = {{"box", unit_json(c.box, cfg.box, cfg, c.cycles, c.rays)},
                 {"triangle", unit_json(c.triangle, cfg.triangle, cfg, c.cycles, c.rays)},
                 {"avoidance", unit_json(c.avoidance, cfg.avoidance, cfg, c.cycles, c.rays)}};
+  if (cfg.controller.count > 0) {
+    const UnitConfig ctrl{cfg.controller.count, cfg.controller.latency, cfg.controller.issue_interval};
+    j["units"]["controller"] = unit_json(c.controller, ctrl, cfg, c.cycles, c.rays);
+  }
   j["utilisation"] = {{"box", utilisation_json(c.box, cfg.box, cfg, c.cycles)},
                       {"triangle", utilisation_json(c.triangle, cfg.triangle, cfg, c.cycles)},
                       {"avoidance", utilisation_json(c.avoidance, cfg.avoidance, cfg, c.cycles)},
                       {"slots", per(c.slot_cycles, static_cast<double>(c.cycles) * slots)},
                       {"source", per(c.source_busy_cycles, c.cycles)}};
   // Waits in slot-cycles (summed over rays), and their share of all slot-cycles.
-  const nlohmann::json waits = {{"memory_wait", c.memory_wait_cycles},
+  nlohmann::json waits = {{"memory_wait", c.memory_wait_cycles},
                                 {"box_pipeline_full", c.box.wait_cycles},
                                 {"triangle_pipeline_full", c.triangle.wait_cycles},
                                 {"avoidance_pipeline_full", c.avoidance.wait_cycles},
                                 {"stack_refill_wait", c.refill_wait_cycles}};
+  if (cfg.controller.count > 0) waits["controller_full"] = c.controller.wait_cycles;
   nlohmann::json shares;
   for (const auto& [k, v] : waits.items()) shares[k] = per(v.get<double>(), c.slot_cycles);
   j["stalls"] = {{"slot_cycles", waits},

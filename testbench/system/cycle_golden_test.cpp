@@ -74,6 +74,7 @@ void strip_unpinned(nlohmann::json& j) {
                             "bundle_max", "emission_width", "emission_depth"})
         hw["source"].erase(f);
       hw.erase("shader");
+      hw.erase("controller");
       for (const char* f : {"warmup_rays", "warmup_cycles", "interval_cycles"}) hw["sim"].erase(f);
     }
   }

@@ -163,3 +163,59 @@ TEST_CASE("throughput with ideal memory is within 2 percent of the unit bound", 
   CHECK(got <= bound * 1.0000001);
   CHECK(got >= 0.98 * bound);
 }
+
+TEST_CASE("the traversal controller: each step passes through it, its latency and issue interval by hand",
+          "[cycle][controller]") {
+  const ThreeFloors f;
+  const uint32_t M = 3, Lb = 5, Lt = 11, La = 7, C = 10;
+  TraceRay a = down_from(1, 1.0f);
+  // Ray A as in the three-node case: root box, node 0, node 1, leaf [prim 0],
+  // then its result. Each of those four steps' ends passes the controller.
+  HwConfig cfg = one_slot(M, Lb, Lt, La);
+  cfg.controller.count = 1;
+  cfg.controller.latency = C;
+  const Run run = run_rays({a}, f.scene, f.bvh, ReplayOptions{}, cfg);
+  REQUIRE(run.rays.at(1).prim == 0);
+  const uint64_t latency_a = Lb + (M + Lb) + (M + Lb) + (M + Lt);
+  CHECK(run.rays.at(1).cycle == 1 + latency_a + 4 * C);
+  CHECK(run.result.counters.controller.ops == 4);
+  CHECK(run.result.counters.controller.wait_cycles == 0);
+  CHECK(run.result.hw["units"]["controller"]["ops"] == 4);
+  CHECK(run.result.hw["stalls"]["slot_cycles"]["controller_full"] == 0);
+
+  // Without a controller (count 0, the default) nothing is added and nothing reported.
+  cfg.controller.count = 0;
+  const Run plain = run_rays({a}, f.scene, f.bvh, ReplayOptions{}, cfg);
+  CHECK(plain.rays.at(1).cycle == 1 + latency_a);
+  CHECK_FALSE(plain.result.hw["units"].contains("controller"));
+}
+
+TEST_CASE("the traversal controller's issue interval bounds a core's steps", "[cycle][controller]") {
+  // A root leaf of one floor: each ray is the root box, the leaf and its result,
+  // two controller passes. 32 slots keep many rays in flight, so the one
+  // controller taking a step every I cycles is the bound: 2 I cycles a ray.
+  const Scene scene = make_scene({floor_at(0)});
+  Bvh bvh;
+  bvh.tris.push_back({scene.triangles[0], 0});
+  bvh.root = {0, 1};
+  bvh.root_bounds = box_of(0, 0);
+  bvh.depth = 1;
+  const uint32_t I = 6, rays = 60;
+  HwConfig cfg = one_slot(1, 1, 1, 1);
+  cfg.slots_per_core = 32;
+  cfg.controller.count = 1;
+  cfg.controller.issue_interval = I;
+  std::vector<TraceRay> batch;
+  for (uint32_t i = 0; i < rays; ++i) batch.push_back(down_from(i, 1.0f));
+  const Run run = run_rays(batch, scene, bvh, ReplayOptions{}, cfg);
+  const uint64_t cycles = run.result.counters.cycles;
+  CHECK(run.result.counters.controller.ops == 2 * rays);
+  CHECK(cycles >= 2 * I * (rays - 1));
+  CHECK(cycles <= 2 * I * rays + 10);
+  CHECK(run.result.counters.controller.wait_cycles > 0);
+  // Two controllers halve it.
+  cfg.controller.count = 2;
+  const uint64_t two = run_rays(batch, scene, bvh, ReplayOptions{}, cfg).result.counters.cycles;
+  CHECK(two >= I * (rays - 1));
+  CHECK(two <= I * rays + 10);
+}
