@@ -14,28 +14,10 @@
 using namespace vbsim::hw;
 using vbsim::hw::test::make_memory;
 using vbsim::hw::test::MemoryRig;
+using vbsim::hw::test::fast_channel_config;
+using vbsim::hw::test::small_config;
 
 namespace {
-
-// L1: 2 sets x 2 ways, hit 2; L2: 4 sets x 4 ways, hit 10; DRAM 100 cycles,
-// 16 bytes per cycle (a 64-byte line takes 4 cycles on the channel).
-// Unloaded: L1 hit 2, L2 hit 2 + 10 = 12, DRAM 2 + 10 + 100 = 112 cycles.
-MemoryConfig small_config() {
-  MemoryConfig m;
-  m.l1 = {256, 2, 64, 2, 2};
-  m.l2 = {1024, 4, 64, 10, 4};
-  m.dram_latency = 100;
-  m.dram_bytes_per_cycle = 16;
-  m.dram_max_outstanding = 8;
-  return m;
-}
-
-// The same with a channel so fast that back-to-back lines do not queue.
-MemoryConfig fast_channel_config() {
-  MemoryConfig m = small_config();
-  m.dram_bytes_per_cycle = 65536;
-  return m;
-}
 
 constexpr uint64_t kLine = 64;
 

@@ -9,17 +9,9 @@ using vbsim::hw::test::make_memory;
 
 namespace {
 
-// L1: 2 sets x 2 ways, hit 2; L2: 4 sets x 4 ways, hit 10; DRAM 100 cycles, a
-// channel so fast that lines never queue. Unloaded: L1 hit 2, L2 hit 12, DRAM 112.
-MemoryConfig base() {
-  MemoryConfig m;
-  m.l1 = {256, 2, 64, 2, 2};
-  m.l2 = {1024, 4, 64, 10, 4};
-  m.dram_latency = 100;
-  m.dram_bytes_per_cycle = 65536;
-  m.dram_max_outstanding = 8;
-  return m;
-}
+/// memory_rig.h's small hierarchy with a channel so fast that lines never queue:
+/// L1 hit 2, L2 hit 12, DRAM 112 cycles.
+MemoryConfig base() { return vbsim::hw::test::fast_channel_config(); }
 
 }  // namespace
 

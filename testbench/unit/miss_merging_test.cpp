@@ -10,18 +10,13 @@ using vbsim::hw::test::make_memory;
 
 namespace {
 
-// L1: 2 sets x 2 ways, hit 2, 2 MSHRs; L2: 4 sets x 4 ways, hit 10, 4 MSHRs;
-// DRAM 100 cycles on a channel so fast that lines never queue. A line from
-// DRAM: 2 + 10 + 100 = 112 cycles.
+// memory_rig.h's small hierarchy (L1: 2 sets x 2 ways, hit 2, 2 MSHRs; L2: 4
+// sets x 4 ways, hit 10, 4 MSHRs; DRAM 100 cycles) on a channel so fast that
+// lines never queue. A line from DRAM: 2 + 10 + 100 = 112 cycles.
 MemoryConfig base(bool l1_merges, bool l2_merges) {
-  MemoryConfig m;
-  m.l1 = {256, 2, 64, 2, 2};
-  m.l2 = {1024, 4, 64, 10, 4};
+  MemoryConfig m = vbsim::hw::test::fast_channel_config();
   m.l1.merge_misses = l1_merges;
   m.l2.merge_misses = l2_merges;
-  m.dram_latency = 100;
-  m.dram_bytes_per_cycle = 65536;
-  m.dram_max_outstanding = 8;
   return m;
 }
 
