@@ -244,7 +244,8 @@ def page(rows, n, scene, rays_file):
     for r in rows:
         out.append(f"- **{r['regime']}** ({r['difference']:+.1%}): {explain(r)}.")
     out += ["", "rtcore's node tests count each pool's operations (a node's two boxes each); vbsim's count its box "
-            "unit's operations (two boxes each) including the root's at dispatch. rtcore's L1 misses are its three "
+            "unit's operations (two boxes each; the `rtcore` preset, as rtcore, fetches the root node first and "
+            "tests no root box at dispatch). rtcore's L1 misses are its three "
             "object caches' (a bounding box, node record or triangle each); vbsim's are 64-byte lines of its one L1.", ""]
     return "\n".join(out)
 

@@ -1,7 +1,10 @@
 // BvhStepper: the closest-hit search of closest_hit.h cut into the steps a
 // hardware ray slot performs, so that a timing model can charge each step:
 //
-//   begin        the root box test (the ray's latched root bounds, no fetch)
+//   begin        the root box test (the ray's latched root bounds, no fetch),
+//                unless set_root_box_test(false): then the root node is
+//                fetched first, as any other (a ray that misses the scene
+//                then costs a node fetch and its two box tests)
 //   node_step    fetch of node A -> both child box tests -> descend into the
 //                nearer child met, push the farther one when both are met
 //   triangle_step  one triangle of the current leaf -> tester -> candidate
@@ -114,6 +117,7 @@ class BvhStepper {
     if (bvh_->tris.empty()) return done();  // an empty scene: nothing is read or counted
     tester_.emplace(ray_);
     box_.emplace(ray_);
+    if (!root_box_test_) return visit(bvh_->root);
     ++tc.box_tests;
     if (!units.root_box(ray_, *box_, bvh_->root_bounds, cull_limit(tmax_))) return done();
     return visit(bvh_->root);
@@ -189,6 +193,10 @@ class BvhStepper {
   uint64_t spills() const { return spills_; }      ///< entries pushed past the on-chip depth
   uint64_t refills() const { return refills_; }    ///< refill reads
   int onchip_depth() const { return onchip_depth_; }
+  /// Whether begin() tests the root's box (true, the default) or goes straight
+  /// to the root (the hit is the same; the work is not).
+  void set_root_box_test(bool on) { root_box_test_ = on; }
+  bool root_box_test() const { return root_box_test_; }
   /// Host bytes of the traversal stack, the stepper's last member (a timing
   /// model may prefetch the stepper's other members before a step).
   static constexpr size_t stack_host_bytes() { return sizeof(Entry) * (kTraversalStackDepth + 1); }
@@ -256,6 +264,7 @@ class BvhStepper {
   int refill_count_ = 0;
   bool finished_ = false;
   bool any_hit_ = false;
+  bool root_box_test_ = true;
   const CandidateFilter* filter_;
   CandidateCounters* cc_ = nullptr;
   Hit best_;

@@ -75,6 +75,7 @@ class Engine final : public CycleEngine, private SourceHost {
     for (uint32_t i = 0; i < slots; ++i)
       slots_.emplace_back(p.bvh, p.replayer.filter(), static_cast<int>(p.config.stack_depth),
                           i / p.config.slots_per_core);
+    for (Slot& s : slots_) s.stepper.set_root_box_test(p.config.root_box_test);
     if (tracing_) set_up_tracing();
     if (sampling_) {
       if (p.warmup_rays == 0) warmup_cycle_ = 0;
@@ -381,25 +382,29 @@ class Engine final : public CycleEngine, private SourceHost {
     s.emitted = ray.emitted;
     s.entered = ray.entered;
     KindStats& ks = replayer_.stats().by_kind[static_cast<int>(s.tr.kind)];
-    // The root box test: bounds latched with the ray.
-    UnitSchedule box;
+    // The root box test: bounds latched with the ray (hw.root_box_test; off:
+    // the root node's fetch follows the dispatch at once).
+    UnitSchedule box{at, at};
+    const bool root_test = cfg_.root_box_test;
     if constexpr (kBuiltinUnits) {
       s.pending = s.stepper.begin(s.er.ray, replayer_.any_hit(s.tr, s.er), ks.candidates, ks.traversal);
-      box = box_op(core, at, at);
+      if (root_test) box = box_op(core, at, at);
     } else {
       PortUnits<Tester> units = port_units(s, id, at, at);
       s.pending = s.stepper.begin(s.er.ray, replayer_.any_hit(s.tr, s.er), ks.candidates, ks.traversal, units);
-      if (!call_.box_called) {  // an empty scene: the root's (empty) box is still tested
+      if (root_test && !call_.box_called) {  // an empty scene: the root's (empty) box is still tested
         const RayBoxTester latched(s.er.ray);
         units.root_box(s.er.ray, latched, bvh_.root_bounds, s.er.ray.tmax);
       }
-      box = call_.box;
+      if (root_test) box = call_.box;
     }
     if (__builtin_expect(tracing_, 0)) {
       trace_occupancy(core_index, at, +1);
       trace_source(ray.entered, ray.emitted, at);
-      trace_step(id, "root box", box.issue, box.done, 0, 0);
-      trace_op(id, kBox, box);
+      if (root_test) {
+        trace_step(id, "root box", box.issue, box.done, 0, 0);
+        trace_op(id, kBox, box);
+      }
     }
     schedule_step(box.done, id);
   }

@@ -197,6 +197,7 @@ void apply_hw_config(const nlohmann::json& j, const std::string& file, HwConfig&
       read_operator_latencies(*o, file, "hw.triangle.operator_latency", cfg.triangle_timing.op);
   }
   read_unit(f, "avoidance", cfg.avoidance);
+  f.boolean("root_box_test", cfg.root_box_test);
   if (const auto* v = f.get("controller")) {
     Fields fc(*v, file, "hw.controller");
     fc.integer("count", cfg.controller.count, 0, 64);
@@ -287,6 +288,7 @@ nlohmann::json hw_config_json(const HwConfig& c) {
           {"box", unit(c.box)},
           {"triangle", triangle_json(c)},
           {"avoidance", unit(c.avoidance)},
+          {"root_box_test", c.root_box_test},
           {"controller",
            {{"count", c.controller.count},
             {"latency", c.controller.latency},

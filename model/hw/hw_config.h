@@ -90,6 +90,9 @@ struct HwConfig {
   TriangleTiming triangle_timing;
   UnitConfig avoidance{1, 6, 1};
   ControllerConfig controller;
+  /// Each ray's search starts with a test of the root's box, latched with the
+  /// ray (true); false: with the root node's fetch, as rtcore-systemc's does.
+  bool root_box_test = true;
   MemoryConfig memory;
   uint32_t quantum_cycles = 256;        ///< sim: most cycles the engine runs ahead of SystemC time
   uint32_t latency_bucket_cycles = 32;  ///< sim: width of a latency histogram bucket

@@ -75,6 +75,7 @@ void strip_unpinned(nlohmann::json& j) {
         hw["source"].erase(f);
       hw.erase("shader");
       hw.erase("controller");
+      hw.erase("root_box_test");
       for (const char* f : {"warmup_rays", "warmup_cycles", "interval_cycles"}) hw["sim"].erase(f);
     }
   }
