@@ -71,7 +71,13 @@ Accelerator::Accelerator(sc_core::sc_module_name name, const HwConfig& config, c
       avoidance_in_use_(options.method.validity_bit && options.method.avoidance.policy != AvoidancePolicy::SignOnly),
       cores_("core") {
   if (!units.external_memory) check_builtin_lookahead(config.memory);
-  source_ = std::make_unique<RaySource>("ray_source", config, replayer_);
+  if (units.ray_source) {
+    source_module_ = units.ray_source("ray_source", config, replayer_);
+    source_if_ = &replacement_as<RaySourceIf>(*source_module_, "RaySourceIf");
+  } else {
+    source_ = std::make_unique<RaySource>("ray_source", config, replayer_);
+    source_if_ = source_.get();
+  }
   if (units.dispatcher) {
     dispatcher_module_ = units.dispatcher("dispatcher", config);
     dispatcher_ = &replacement_as<DispatchIf>(*dispatcher_module_, "DispatchIf");
@@ -161,7 +167,7 @@ void Accelerator::set_tracing(VcdRecorder* vcd, TimelineRecorder* timeline) {
 }
 
 EngineParts Accelerator::engine_parts() {
-  EngineParts p{config_, replayer_, bvh_, *source_, *dispatcher_, dynamic_cast<Dispatcher*>(dispatcher_), *sink_, {}, false, nullptr, false, nullptr, nullptr, {}, nullptr, {}, {}, 0, EngineParts::kNoWarmup, EngineParts::kNoWarmup};
+  EngineParts p{config_, replayer_, bvh_, *source_if_, *dispatcher_, dynamic_cast<Dispatcher*>(dispatcher_), *sink_, {}, false, nullptr, false, nullptr, nullptr, {}, nullptr, {}, {}, 0, EngineParts::kNoWarmup, EngineParts::kNoWarmup};
   bool all_l1 = true, all_ideal = ideal_ != nullptr;
   for (RayTestCore& c : cores_) {
     MemoryReadIf* mem = c.memory.operator->();
@@ -344,6 +350,8 @@ HwCounters Accelerator::chip_counters() const {
     c.spills += k.spills;
     c.slot_cycles += k.slot_cycles;
   }
+  c.source_replaced = !source_;
+  if (!source_) return c;  // a replacement source: its counts are its own
   const SourceCounters& src = source_->counters();
   c.no_free_slot_cycles = src.no_free_slot_cycles;
   c.source_busy_cycles = src.busy_cycles;
@@ -486,6 +494,7 @@ nlohmann::json Accelerator::hw_json() {
 }
 
 nlohmann::json Accelerator::emission_json() const {
+  if (!source_) return {{"replaced", true}};
   const EmissionCounters& e = source_->emission();
   const SourceCounters& s = source_->counters();
   const SourceConfig& sc = config_.source;
@@ -523,6 +532,11 @@ std::string Accelerator::hw_table() {
   const SystemCRun sc = systemc_run();
   std::string table = hw_summary_table({c, config_, replayer_.stats(), mem, sc});
   const nlohmann::json e = emission_json();
+  if (!source_) {
+    table += "  emission: a replacement ray source (its figures are its own)\n";
+    table += run_statistics_lines(statistics_sample(c.cycles + 1, true), statistics_);
+    return table;
+  }
   const auto& share = e["share_of_lane_cycles"];
   table += fmt::format(
       "  emission ({} lane{}, window {}, dependencies {}): lanes busy {:.1f}%, idle for parents {:.1f}%, idle for "

@@ -91,9 +91,11 @@ class Accelerator final : private AcceleratorChecks, public sc_core::sc_module, 
   tlm::tlm_initiator_socket<>& memory_socket();
 
   // ---- before sc_start ----
-  void set_feed(RayFeed feed) { source_->set_feed(std::move(feed)); }
+  void set_feed(RayFeed feed) { source_if_->set_feed(std::move(feed)); }
   /// How errors found in a ray (a child before its parent) name its line.
-  void set_locator(RayLocator locate) { source_->set_locator(std::move(locate)); }
+  void set_locator(RayLocator locate) {
+    if (source_) source_->set_locator(std::move(locate));
+  }
   /// Receives every finished ray's cycles (ready, emitted, started, finished) and slot.
   void set_ray_times(RayTimesSink sink) { ray_times_ = std::move(sink); }
   void set_result_callback(RayResultSink callback) { sink_->set_callback(std::move(callback)); }
@@ -180,7 +182,9 @@ class Accelerator final : private AcceleratorChecks, public sc_core::sc_module, 
   CycleClock clock_;
   bool at_;
   bool avoidance_in_use_;
-  std::unique_ptr<RaySource> source_;
+  std::unique_ptr<RaySource> source_;               // the built-in source, null when replaced
+  std::unique_ptr<sc_core::sc_module> source_module_;  // a replacement (units.ray_source)
+  RaySourceIf* source_if_ = nullptr;                 // the one the scheduler drives
   std::unique_ptr<sc_core::sc_module> dispatcher_module_;
   DispatchIf* dispatcher_ = nullptr;
   sc_core::sc_vector<RayTestCore> cores_;

@@ -21,8 +21,11 @@
 //                                       `forward`; the built-in one stays as result_accounting for
 //                                       the run's cycles and latencies; verdicts are the replacement's)
 //
-// The ray source is not replaceable: the scheduler drives it through
-// SourceHost (hw/ray_source.h), an interface of the scheduler's own.
+//   ray_source       RaySourceIf       (hw/ray_source_if.h) reads the feed, emits each ray through
+//                                       the replayer it is given (FunctionalReplayer::emit, in trace
+//                                       order) and dispatches it through SourceHost; the built-in
+//                                       source's statistics (hw.source's counts, hw.emission) are
+//                                       then absent, marked `replaced`
 //
 // The memory behind the built-in L2 is replaced at the TLM-2.0 socket instead
 // (Accelerator::memory_socket with external_memory set; refused with l2_cache). A replaced unit
@@ -38,6 +41,7 @@
 #include <systemc>
 
 #include "hw/hw_config.h"
+#include "replay/functional_replayer.h"
 
 namespace vbsim::hw {
 
@@ -49,6 +53,10 @@ struct AcceleratorUnits {
 
   CoreUnitFactory box_unit, triangle_tester, avoidance_unit, l1_cache;
   UnitFactory dispatcher, l2_cache, result_sink;
+  /// replayer: the emission step a replacement source runs on each ray (outlives it).
+  using SourceFactory = std::function<std::unique_ptr<sc_core::sc_module>(const char* name, const HwConfig& config,
+                                                                          FunctionalReplayer& replayer)>;
+  SourceFactory ray_source;
   /// Leave the L2's TLM-2.0 socket (Accelerator::memory_socket) for the user to
   /// bind to their own memory target instead of the built-in Dram.
   bool external_memory = false;

@@ -298,7 +298,7 @@ class Engine final : public CycleEngine, private SourceHost {
     if (vcd_) {
       rays_done_signal_ = vcd_->signal("accelerator", "rays_done");
       in_flight_signal_ = vcd_->signal("accelerator", "rays_in_flight");
-      const std::string source = source_.name();
+      const std::string source = instance_name(&source_, "accelerator.ray_source");
       source_waiting_signal_ = vcd_->signal(source, "rays_waiting");
       source_emitted_signal_ = vcd_->signal(source, "rays_emitted");
     }
@@ -560,7 +560,7 @@ class Engine final : public CycleEngine, private SourceHost {
   FunctionalReplayer& replayer_;
   const Bvh& bvh_;
   BvhAddressMap map_;
-  RaySource& source_;
+  RaySourceIf& source_;
   DispatchIf& dispatcher_;
   Dispatcher* builtin_dispatcher_;
   ResultSink& sink_;

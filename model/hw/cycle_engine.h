@@ -37,6 +37,7 @@ class Dispatcher;
 class IdealMemory;
 class TriangleTester;
 class RaySource;
+class RaySourceIf;
 class RayTestCore;
 class ResultSink;
 
@@ -90,7 +91,7 @@ struct EngineParts {
   const HwConfig& config;
   FunctionalReplayer& replayer;
   const Bvh& bvh;
-  RaySource& source;       ///< the built-in ray source (called directly)
+  RaySourceIf& source;     ///< the ray source (the built-in RaySource or a replacement)
   DispatchIf& dispatcher;
   Dispatcher* builtin_dispatcher;  ///< `dispatcher` when it is the built-in one (called directly), else null
   ResultSink& sink;        ///< the built-in result sink (called directly)

@@ -77,6 +77,7 @@ struct HwCounters {
   uint64_t spills = 0;              ///< stack entries pushed past the on-chip depth
   uint64_t no_free_slot_cycles = 0; ///< cycles the source held a ready ray because no slot was free
   uint64_t source_busy_cycles = 0;  ///< cycles the source spent emitting (interval, sign bits, emission ops)
+  bool source_replaced = false;     ///< a replacement source: the source's counts above are not known
   uint64_t sign_bits_computed = 0;  ///< rays whose sign bit the source computed
   uint64_t emission_ops = 0;        ///< emission-time method operations charged
   uint64_t emission_unit_ops = 0;   ///< arithmetic operations through the emission unit (0 without one)

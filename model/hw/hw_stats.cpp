@@ -97,6 +97,10 @@ nlohmann::json hw_stats_json(const HwReport& r) {
     j["source"]["emission_unit"] = {{"width", cfg.source.emission_width},
                                     {"depth", cfg.source.emission_depth},
                                     {"ops", c.emission_unit_ops}};
+  if (c.source_replaced) {  // a replacement source: its counts are its own
+    j["source"] = {{"replaced", true}};
+    j["utilisation"]["source"] = nullptr;
+  }
   j["latency"] = {{"min", c.latency_min},
                   {"mean", per(c.slot_cycles, c.rays)},
                   {"max", c.latency_max},

@@ -52,31 +52,12 @@
 #include "hw/hw_counters.h"
 #include "hw/id_position_map.h"
 #include "hw/ray_feed.h"
+#include "hw/ray_source_if.h"
 #include "hw/ready_queue.h"
 #include "hw/stat_provider.h"
 #include "replay/functional_replayer.h"
 
 namespace vbsim::hw {
-
-/// One buffered ray as the source hands it to the dispatcher.
-struct SourceRay {
-  TraceRay tr;
-  EmittedRay er;
-  uint64_t index = 0;   ///< position in the trace (0 for the first ray)
-  uint64_t ready = 0;   ///< cycle it became ready for emission
-  uint64_t emitted = 0; ///< cycle its emission started
-  uint64_t entered = 0; ///< cycle it entered the buffer
-};
-
-/// What the source needs from the scheduler.
-class SourceHost {
- public:
-  virtual ~SourceHost() = default;
-  /// The source's event `id` (0 <= id < RaySource::event_ids()) fires at `cycle`.
-  virtual void schedule_source_event(uint32_t id, uint64_t cycle) = 0;
-  /// Puts `ray` in a free slot at `at`; false when every slot is busy.
-  virtual bool try_dispatch(const SourceRay& ray, uint64_t at) = 0;
-};
 
 /// What the source counted beyond SourceCounters.
 struct EmissionCounters {
@@ -88,33 +69,33 @@ struct EmissionCounters {
   uint64_t bundles = 0, bundled_rays = 0;  ///< bundle calls and the rays they emitted
 };
 
-class RaySource final : public sc_core::sc_module, public StatProvider {
+class RaySource final : public sc_core::sc_module, public RaySourceIf, public StatProvider {
  public:
   /// `replayer` outlives the source.
   RaySource(sc_core::sc_module_name name, const HwConfig& config, FunctionalReplayer& replayer);
 
   /// The trace to emit, and how to name a ray's line in an error (both before the simulation starts).
-  void set_feed(RayFeed feed) { feed_ = std::move(feed); }
+  void set_feed(RayFeed feed) override { feed_ = std::move(feed); }
   void set_locator(RayLocator locate) { locate_ = std::move(locate); }
 
   // ---- the scheduler's side ----
   /// Events of the source: one per lane, one per buffer place.
-  uint32_t event_ids() const { return lanes_count_ + capacity_; }
-  void start(SourceHost& host, uint64_t at);
-  void on_event(uint32_t id, uint64_t at);
+  uint32_t event_ids() const override { return lanes_count_ + capacity_; }
+  void start(SourceHost& host, uint64_t at) override;
+  void on_event(uint32_t id, uint64_t at) override;
   /// The ray at trace position `index` finished at `at`.
-  void on_finish(uint64_t index, uint64_t at);
+  void on_finish(uint64_t index, uint64_t at) override;
   /// A slot became free at `at`: held rays go first, then idle lanes start.
-  void on_slot_free(uint64_t at);
+  void on_slot_free(uint64_t at) override;
   /// The trace has ended and every ray read has finished.
-  bool all_done() const { return ended_ && base_ == next_; }
-  uint64_t rays_read() const { return next_; }
+  bool all_done() const override { return ended_ && base_ == next_; }
+  uint64_t rays_read() const override { return next_; }
   bool holding() const { return !held_.empty(); }
   /// Where the first child whose parent was not found is (missing_parents
   /// "independent"; empty when none was): its line and what was missing.
   const std::string& first_parent_not_found() const { return first_not_found_; }
   /// Rays in the buffer not yet emitted, for a report of a stuck run.
-  std::string buffer_report() const;
+  std::string buffer_report() const override;
 
   const SourceCounters& counters() const { return counters_; }
   const EmissionCounters& emission() const { return emission_; }

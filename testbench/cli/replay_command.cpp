@@ -131,7 +131,7 @@ ReplayStats run_cycle_mode(const ReplayArgs& a, const ReplayOptions& opt, const 
     log->flush();
     log_file->commit();
   }
-  if (const uint64_t n = r.hw["emission"]["parents_not_found"].get<uint64_t>(); n != 0 && !a.quiet)
+  if (const uint64_t n = r.hw["emission"].value("parents_not_found", uint64_t{0}); n != 0 && !a.quiet)
     fmt::print(stderr,
                "vbsim: warning: {} child ray{} replayed as independent rays: {} parent not found among the rays "
                "before {} (the first: {})\n",
