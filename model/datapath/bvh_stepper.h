@@ -218,13 +218,6 @@ class BvhStepper {
     return {static_cast<StepRequest::Kind>(r.is_leaf() ? StepRequest::Leaf : StepRequest::Node), r.index, r.count};
   }
 
-  void push(BvhRef r, float t) {
-    stack_[sp_] = {r.index, r.count, t};
-    ++sp_;
-    if (onchip_ == onchip_depth_) ++spills_;  // the oldest on-chip entry goes to memory
-    else ++onchip_;
-  }
-
   /// The next subtree the ray can still reach before its closest hit.
   StepRequest pop() {
     for (;;) {
