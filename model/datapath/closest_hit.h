@@ -49,14 +49,12 @@ constexpr int kTraversalStackDepth = 128;
 // hit's distance to be found whatever box holds it.
 // An any-hit search stops at the first accepted hit, whatever its id.
 
-/// The upper bound to test a triangle against: the ray's tmax, or tmax widened
-/// as a box's exit is once the search holds a hit at tmax (so that a tie is seen).
-inline float candidate_limit(const Hit& best, float tmax) {
-  return best.prim >= 0 ? tmax * RayBoxTester::kWiden : tmax;
-}
-
 /// The distance beyond which boxes and stack entries are culled (above).
 inline float cull_limit(float tmax) { return tmax * RayBoxTester::kWiden; }
+
+/// The upper bound to test a triangle against: the ray's tmax, or once the
+/// search holds a hit at tmax, cull_limit(tmax) (so that a tie is seen).
+inline float candidate_limit(const Hit& best, float tmax) { return best.prim >= 0 ? cull_limit(tmax) : tmax; }
 
 /// Whether candidate `h` (inside candidate_limit) is nearer than `best` at
 /// `tmax`: closer, or at the same distance with a lower primitive id.

@@ -72,10 +72,11 @@ class Engine final : public CycleEngine, private SourceHost {
                                   c.core->counters.controller, std::string(c.core->name()) + ".controller");
     }
     slots_.reserve(slots);
-    for (uint32_t i = 0; i < slots; ++i)
+    for (uint32_t i = 0; i < slots; ++i) {
       slots_.emplace_back(p.bvh, p.replayer.filter(), static_cast<int>(p.config.stack_depth),
                           i / p.config.slots_per_core);
-    for (Slot& s : slots_) s.stepper.set_root_box_test(p.config.root_box_test);
+      slots_.back().stepper.set_root_box_test(p.config.root_box_test);
+    }
     if (tracing_) set_up_tracing();
     if (sampling_) {
       if (p.warmup_rays == 0) warmup_cycle_ = 0;

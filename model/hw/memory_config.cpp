@@ -38,10 +38,20 @@ void check_cache(const CacheConfig& c, const std::string& name, uint32_t min_hit
 
 }  // namespace
 
-uint32_t dram_line_latency(const MemoryConfig& config) {
+namespace {
+
+/// ceil(line_bytes x dram_latency_per_byte): the per-byte part of a line
+/// request's latency (per_byte in [0, 1000], checked first).
+uint64_t dram_line_extra_cycles(const MemoryConfig& config) {
   // A product such as 64 x 0.1 lands a hair above the whole number it means.
   const double extra = std::ceil(config.l2.line_bytes * config.dram_latency_per_byte - 1e-9);
-  return config.dram_latency + static_cast<uint32_t>(extra > 0 ? extra : 0);
+  return extra > 0 ? static_cast<uint64_t>(extra) : 0;
+}
+
+}  // namespace
+
+uint32_t dram_line_latency(const MemoryConfig& config) {
+  return config.dram_latency + static_cast<uint32_t>(dram_line_extra_cycles(config));
 }
 
 const char* tlm_style_name(TlmStyle s) { return s == TlmStyle::LooselyTimed ? "lt" : "at"; }
@@ -60,7 +70,7 @@ void check_memory_config(const MemoryConfig& config, int cores) {
   const double per_byte = config.dram_latency_per_byte;
   if (!std::isfinite(per_byte) || per_byte < 0 || per_byte > 1000)
     reject("dram_latency_per_byte", "must be a number from 0 to 1000");
-  if (uint64_t{config.dram_latency} + static_cast<uint64_t>(std::ceil(config.l2.line_bytes * per_byte)) > 100000000)
+  if (uint64_t{config.dram_latency} + dram_line_extra_cycles(config) > 100000000)
     reject("dram_latency_per_byte", "a line request would take more than 10^8 cycles");
   const double bpc = config.dram_bytes_per_cycle;
   if (!std::isfinite(bpc) || bpc <= 0) reject("dram_bytes_per_cycle", "must be a positive number");

@@ -54,10 +54,11 @@ void apply_replay_config(const nlohmann::json& j, const std::string& file, Repla
             "low, medium, high");
     fb.integer("max_leaf_size", opt.bvh.max_leaf_size);
     fb.number("traversal_cost", opt.bvh.traversal_cost);
-    if (!(opt.bvh.traversal_cost > 0 && opt.bvh.traversal_cost <= 1000))
-      fail(file, "bvh.traversal_cost", fmt::format("must be in (0, 1000], got {}", opt.bvh.traversal_cost));
-    if (opt.bvh.max_leaf_size < 1 || opt.bvh.max_leaf_size > 32)
-      fail(file, "bvh.max_leaf_size", fmt::format("must be 1 to 32, got {}", opt.bvh.max_leaf_size));
+    if (!(opt.bvh.traversal_cost > 0 && opt.bvh.traversal_cost <= kMaxBvhTraversalCost))
+      fail(file, "bvh.traversal_cost",
+           fmt::format("must be in (0, {}], got {}", kMaxBvhTraversalCost, opt.bvh.traversal_cost));
+    if (opt.bvh.max_leaf_size < 1 || opt.bvh.max_leaf_size > kMaxBvhLeafSize)
+      fail(file, "bvh.max_leaf_size", fmt::format("must be 1 to {}, got {}", kMaxBvhLeafSize, opt.bvh.max_leaf_size));
   }
   f.number("tmin_eps", m.tmin_eps);
   f.number("offset_normal_eps", m.offset_normal_eps);

@@ -90,11 +90,17 @@ enum class BvhQuality { Low, Medium, High };
 const char* bvh_quality_name(BvhQuality q);              ///< "low", "medium", "high"
 bool parse_bvh_quality(const std::string& s, BvhQuality& out);
 
+/// The largest leaf Embree's builders make (RTC_BUILD_MAX_PRIMITIVES_PER_LEAF),
+/// and the largest SAH traversal cost build_bvh takes.
+constexpr int kMaxBvhLeafSize = 32;
+constexpr float kMaxBvhTraversalCost = 1000.0f;
+
 struct BvhBuildOptions {
-  int max_leaf_size = 4;  ///< triangles per leaf at most (1..65535; Embree builds leaves of at most 32)
+  int max_leaf_size = 4;  ///< triangles per leaf at most (1..kMaxBvhLeafSize)
   BvhQuality quality = BvhQuality::High;
   /// The SAH's cost of a node step against one triangle test's 1 (Embree's
-  /// traversalCost): larger gives fewer, larger leaves (up to max_leaf_size).
+  /// traversalCost), in (0, kMaxBvhTraversalCost]: larger gives fewer, larger
+  /// leaves (up to max_leaf_size).
   float traversal_cost = 1.0f;
   bool operator==(const BvhBuildOptions& o) const {
     return max_leaf_size == o.max_leaf_size && quality == o.quality && traversal_cost == o.traversal_cost;
@@ -112,7 +118,8 @@ struct Bvh {
   int depth = 0;
 };
 
-/// Builds the BVH of `scene` with rtcBuildBVH (`options`: quality and leaf size). Every
+/// Builds the BVH of `scene` with rtcBuildBVH (`options`: quality, leaf size,
+/// traversal cost; std::invalid_argument when out of range). Every
 /// triangle appears in exactly one leaf; an empty scene gives no nodes and no triangles.
 Bvh build_bvh(const Scene& scene, const BvhBuildOptions& options = {});
 

@@ -32,7 +32,6 @@ namespace vbsim {
 namespace {
 
 constexpr unsigned kMaxDepth = 32;  // Embree's default depth limit for rtcBuildBVH
-constexpr int kMaxLeafSize = 32;    // RTC_BUILD_MAX_PRIMITIVES_PER_LEAF: Embree's builders stop there
 
 // Temporary node, allocated in Embree's thread-local allocator (freed with the RTCBVH).
 struct BuildNode {
@@ -202,12 +201,12 @@ bool parse_bvh_quality(const std::string& s, BvhQuality& out) {
 }
 
 Bvh build_bvh(const Scene& scene, const BvhBuildOptions& options) {
-  if (!(options.traversal_cost > 0 && options.traversal_cost <= 1000))
-    throw std::invalid_argument(fmt::format("BvhBuildOptions.traversal_cost must be in (0, 1000], got {}",
-                                            options.traversal_cost));
-  if (options.max_leaf_size < 1 || options.max_leaf_size > kMaxLeafSize)
-    throw std::invalid_argument(fmt::format("BvhBuildOptions.max_leaf_size must be in 1..{}, got {}", kMaxLeafSize,
-                                            options.max_leaf_size));
+  if (!(options.traversal_cost > 0 && options.traversal_cost <= kMaxBvhTraversalCost))
+    throw std::invalid_argument(fmt::format("BvhBuildOptions.traversal_cost must be in (0, {}], got {}",
+                                            kMaxBvhTraversalCost, options.traversal_cost));
+  if (options.max_leaf_size < 1 || options.max_leaf_size > kMaxBvhLeafSize)
+    throw std::invalid_argument(fmt::format("BvhBuildOptions.max_leaf_size must be in 1..{}, got {}",
+                                            kMaxBvhLeafSize, options.max_leaf_size));
 
   Bvh bvh;
   if (scene.triangles.empty()) return bvh;  // no nodes, no triangles, depth 0

@@ -9,7 +9,7 @@
 namespace vbsim {
 
 /// Cost constants of the SAH figure; equal to the traversal and intersection
-/// costs build_bvh passes to Embree (Embree's defaults).
+/// costs build_bvh passes to Embree by default (BvhBuildOptions::traversal_cost 1).
 constexpr double kSahTraversalCost = 1.0;
 constexpr double kSahIntersectionCost = 1.0;
 

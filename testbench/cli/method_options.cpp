@@ -41,7 +41,8 @@ void add_method_options(CLI::App& app, MethodOptions& o, const std::string& defa
   app.add_option("--bvh-quality", o.bvh_quality,
                  "the BVH's build: Embree's low (Morton), medium or high (binned SAH) quality; hits do not depend "
                  "on it, the work does [high]");
-  app.add_option("--bvh-leaf-size", o.bvh_leaf_size, "the BVH's largest leaf, 1 to 32 triangles [4]");
+  app.add_option("--bvh-leaf-size", o.bvh_leaf_size,
+                 fmt::format("the BVH's largest leaf, 1 to {} triangles [4]", kMaxBvhLeafSize));
   app.add_option("--bvh-traversal-cost", o.bvh_traversal_cost,
                  "the BVH builder's cost of a node step against a triangle test's 1: larger gives larger leaves [1]");
   add_parent_window_option(app, o.parent_window);
