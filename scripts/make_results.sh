@@ -18,7 +18,9 @@
 #     pathtracer trace (scripts/energy_page.py, docs/energy.md);
 #  5. stability.md, sweep-*.png, sweeps.csv: stability sweeps (scripts/sweep.py);
 #  6. montage.png: every method rendered on the failure scenes
-#     (scripts/make_montage.py);
+#     (scripts/make_montage.py); closed-loop.md and closed-loop*.png: every
+#     method's frame on the accelerator, closed loop against replay of the
+#     reference renderer's rays (scripts/closed_loop_study.py);
 #  7. checks every figure docs/findings.md quotes against them
 #     (scripts/check_findings.py, full mode): exits 1 when one no longer matches.
 #
@@ -117,6 +119,8 @@ mkdir -p "$out/captured/pathtracer"
 /usr/bin/python3 scripts/energy_page.py --score "$out/accuracy.json" --score "$out/pathtracer.json" --out docs/results
 /usr/bin/python3 scripts/sweep.py --vbsim "$vbsim" --work "$out/sweeps" --out docs/results ${backend[@]+"${backend[@]}"}
 /usr/bin/python3 scripts/make_montage.py
+# Closed loop against replay of the reference renderer's rays, every method (docs/render.md).
+/usr/bin/python3 scripts/closed_loop_study.py --vbsim "$vbsim"
 # The timing cross-validation against rtcore-systemc: only where its source is given
 # (VBSIM_RTCORE_SRC); skipped with a message otherwise, leaving the page as it was.
 /usr/bin/python3 scripts/rtcore_crossval.py --vbsim "$vbsim"

@@ -157,6 +157,13 @@ tlm::tlm_initiator_socket<>& Accelerator::memory_socket() {
   return *memory_socket_;
 }
 
+void Accelerator::set_shader(RayShader& shader) {
+  if (sink_replacement_)
+    throw std::logic_error("a closed-loop shader needs the built-in result sink: the replacement receives the rays");
+  source_if_->set_shader_feed([&shader](TraceRay& tr, uint64_t cycle) { return shader.next_ray(tr, cycle); });
+  sink_->set_shader(&shader);
+}
+
 void Accelerator::set_tracing(VcdRecorder* vcd, TimelineRecorder* timeline) {
   vcd_ = vcd;
   timeline_ = timeline;
@@ -516,11 +523,13 @@ nlohmann::json Accelerator::emission_json() const {
            {{"busy", s.busy_cycles},
             {"idle_for_dependencies", e.lane_idle_dependency_cycles},
             {"idle_for_window", e.lane_idle_window_cycles},
+            {"idle_for_shader", e.lane_idle_shader_cycles},
             {"holding_for_a_slot", s.no_free_slot_cycles}}},
           {"share_of_lane_cycles",
            {{"busy", share(s.busy_cycles)},
             {"idle_for_dependencies", share(e.lane_idle_dependency_cycles)},
             {"idle_for_window", share(e.lane_idle_window_cycles)},
+            {"idle_for_shader", share(e.lane_idle_shader_cycles)},
             {"holding_for_a_slot", share(s.no_free_slot_cycles)}}},
           {"bundles", e.bundles},
           {"bundled_rays", e.bundled_rays}};
@@ -540,10 +549,14 @@ std::string Accelerator::hw_table() {
   const auto& share = e["share_of_lane_cycles"];
   table += fmt::format(
       "  emission ({} lane{}, window {}, dependencies {}): lanes busy {:.1f}%, idle for parents {:.1f}%, idle for "
-      "the window {:.1f}%, holding for a slot {:.1f}%; {} children waited {:.1f} cycles on average\n",
+      "the window {:.1f}%,{} holding for a slot {:.1f}%; {} children waited {:.1f} cycles on average\n",
       config_.source.rays_per_cycle, config_.source.rays_per_cycle == 1 ? "" : "s", config_.source.window,
       config_.source.dependencies ? "on" : "off", 100 * share["busy"].get<double>(),
       100 * share["idle_for_dependencies"].get<double>(), 100 * share["idle_for_window"].get<double>(),
+      // A closed-loop shader's waits (none in a replay, whose line stays as it was).
+      e["lane_cycles"]["idle_for_shader"].get<uint64_t>()
+          ? fmt::format(" idle for the shader {:.1f}%,", 100 * share["idle_for_shader"].get<double>())
+          : std::string(),
       100 * share["holding_for_a_slot"].get<double>(), e["children_waited"].get<uint64_t>(),
       e["mean_dependency_wait_cycles"].get<double>());
   table += run_statistics_lines(statistics_sample(c.cycles + 1, true), statistics_);

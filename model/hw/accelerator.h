@@ -99,6 +99,11 @@ class Accelerator final : private AcceleratorChecks, public sc_core::sc_module, 
   /// Receives every finished ray's cycles (ready, emitted, started, finished) and slot.
   void set_ray_times(RayTimesSink sink) { ray_times_ = std::move(sink); }
   void set_result_callback(RayResultSink callback) { sink_->set_callback(std::move(callback)); }
+  /// A closed-loop workload in place of a trace (replay/closed_loop.h; it
+  /// outlives the run): the ray source asks it for rays, the result sink hands
+  /// it every answer, after the result callback. Throws std::logic_error with
+  /// a replaced result sink, or a replaced ray source that takes no shader.
+  void set_shader(RayShader& shader);
   /// Keep parent rays for intended origins (default true; parentless benchmark rays need not).
   void set_track_parents(bool on) { replayer_.set_track_parents(on); }
   /// Set (e.g. by SIGINT) to end the run early; the run is then partial.

@@ -27,10 +27,32 @@ std::vector<std::string> instance_names(const sc_core::sc_object& root) {
   return out;
 }
 
-}  // namespace
+/// A closed-loop shader whose rays are counted, for the conservation check.
+class CountingShader final : public RayShader {
+ public:
+  CountingShader(RayShader& shader, uint64_t& cast) : shader_(shader), cast_(cast) {}
+  ShaderAnswer next_ray(TraceRay& out, uint64_t cycle) override {
+    const ShaderAnswer a = shader_.next_ray(out, cycle);
+    cast_ += a == ShaderAnswer::Ray;
+    return a;
+  }
+  void on_result(const TraceRay& ray, const RayOutcome& outcome, uint64_t cycle) override {
+    shader_.on_result(ray, outcome, cycle);
+  }
 
-CycleRunResult run_cycle_replay(const RayFeed& feed, const Scene& scene, const Bvh& bvh, const ReplayOptions& opt,
-                                const HwConfig& cfg, const RayResultSink& sink, const CycleRunOptions& options) {
+ private:
+  RayShader& shader_;
+  uint64_t& cast_;
+};
+
+/// What a run takes its rays from: a trace's feed or a closed-loop shader (one of the two).
+struct RunInput {
+  const RayFeed* feed = nullptr;
+  RayShader* shader = nullptr;
+};
+
+CycleRunResult run_accelerator(const RunInput& input, const Scene& scene, const Bvh& bvh, const ReplayOptions& opt,
+                               const HwConfig& cfg, const RayResultSink& sink, const CycleRunOptions& options) {
   const SimulationContext context;
   const auto start = std::chrono::steady_clock::now();
   auto acc = std::make_unique<Accelerator>("accelerator", cfg, scene, bvh, opt, options.units);
@@ -62,11 +84,16 @@ CycleRunResult run_cycle_replay(const RayFeed& feed, const Scene& scene, const B
     acc->set_statistics(&*statistics);
   }
   uint64_t fed = 0;  // rays in, for the conservation check
-  acc->set_feed([&feed, &fed](TraceRay& tr) {
-    const bool got = feed(tr);
-    fed += got ? 1 : 0;
-    return got;
-  });
+  std::optional<CountingShader> counted;
+  if (input.shader) {
+    acc->set_shader(counted.emplace(*input.shader, fed));
+  } else {
+    acc->set_feed([&feed = *input.feed, &fed](TraceRay& tr) {
+      const bool got = feed(tr);
+      fed += got ? 1 : 0;
+      return got;
+    });
+  }
   acc->set_locator(options.locator);
   acc->set_ray_times(options.ray_times);
   acc->set_result_callback(sink);
@@ -98,6 +125,18 @@ CycleRunResult run_cycle_replay(const RayFeed& feed, const Scene& scene, const B
   if (vcd) vcd->write(options.vcd.path, r.counters.cycles);
   if (timeline) timeline->finish();
   return r;
+}
+
+}  // namespace
+
+CycleRunResult run_cycle_replay(const RayFeed& feed, const Scene& scene, const Bvh& bvh, const ReplayOptions& opt,
+                                const HwConfig& cfg, const RayResultSink& sink, const CycleRunOptions& options) {
+  return run_accelerator(RunInput{&feed, nullptr}, scene, bvh, opt, cfg, sink, options);
+}
+
+CycleRunResult run_cycle_closed_loop(RayShader& shader, const Scene& scene, const Bvh& bvh, const ReplayOptions& opt,
+                                     const HwConfig& cfg, const RayResultSink& sink, const CycleRunOptions& options) {
+  return run_accelerator(RunInput{nullptr, &shader}, scene, bvh, opt, cfg, sink, options);
 }
 
 }  // namespace vbsim::hw

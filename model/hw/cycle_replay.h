@@ -63,4 +63,13 @@ struct CycleRunResult {
 CycleRunResult run_cycle_replay(const RayFeed& feed, const Scene& scene, const Bvh& bvh, const ReplayOptions& opt,
                                 const HwConfig& cfg, const RayResultSink& sink, const CycleRunOptions& options);
 
+/// The same run with a closed-loop workload in place of a trace
+/// (replay/closed_loop.h): `shader` is asked for rays and receives every
+/// answer (after `sink`, which may be empty); the shader outlives the call.
+/// The run ends when the shader answers Finished and every ray has finished;
+/// a shader that answers Later with nothing in flight stops the run with the
+/// report of a stuck run (std::runtime_error).
+CycleRunResult run_cycle_closed_loop(RayShader& shader, const Scene& scene, const Bvh& bvh, const ReplayOptions& opt,
+                                     const HwConfig& cfg, const RayResultSink& sink, const CycleRunOptions& options);
+
 }  // namespace vbsim::hw

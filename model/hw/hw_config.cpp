@@ -179,6 +179,14 @@ void apply_hw_config(const nlohmann::json& j, const std::string& file, HwConfig&
   if (const auto* s = f.get("shader")) {
     Fields fs(*s, file, "hw.shader");
     fs.integer("latency_cycles", cfg.shader.latency_cycles, 0, 1000000);
+    if (const auto* k = fs.get("latency_by_kind")) {
+      Fields fk(*k, file, "hw.shader.latency_by_kind");
+      for (int kind = 0; kind < kRayKindCount; ++kind) {
+        uint32_t cycles = ShaderConfig::kUnset;
+        fk.integer(ray_kind_name(static_cast<RayKind>(kind)), cycles, 0, 1000000);
+        if (cycles != ShaderConfig::kUnset) cfg.shader.by_kind[static_cast<size_t>(kind)] = cycles;
+      }
+    }
   }
   read_unit(f, "box", cfg.box);
   if (const auto* v = f.get("triangle")) {
@@ -249,6 +257,16 @@ HwConfig resolve_hw_config(const std::string& path, const std::string& preset) {
   return cfg;
 }
 
+nlohmann::json shader_config_json(const ShaderConfig& s) {
+  nlohmann::json j = {{"latency_cycles", s.latency_cycles}};
+  if (!s.any_by_kind()) return j;
+  nlohmann::json& k = j["latency_by_kind"];
+  for (int kind = 0; kind < kRayKindCount; ++kind)
+    if (s.by_kind[static_cast<size_t>(kind)] != ShaderConfig::kUnset)
+      k[ray_kind_name(static_cast<RayKind>(kind))] = s.by_kind[static_cast<size_t>(kind)];
+  return j;
+}
+
 nlohmann::json hw_config_json(const HwConfig& c) {
   const auto unit = [](const UnitConfig& u) {
     return nlohmann::json{{"count", u.count}, {"latency", u.latency}, {"issue_interval", u.issue_interval}};
@@ -284,7 +302,7 @@ nlohmann::json hw_config_json(const HwConfig& c) {
             {"bundles", c.source.bundles},
             {"bundle_cycles", c.source.bundle_cycles},
             {"bundle_max", c.source.bundle_max}}},
-          {"shader", {{"latency_cycles", c.shader.latency_cycles}}},
+          {"shader", shader_config_json(c.shader)},
           {"box", unit(c.box)},
           {"triangle", triangle_json(c)},
           {"avoidance", unit(c.avoidance)},

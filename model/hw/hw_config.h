@@ -2,12 +2,14 @@
 // unit, default, meaning). Read from the `hw` object of a configuration file,
 // on top of a preset (model/hw/presets/NAME.json); errors name the JSON field.
 #pragma once
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "datapath/ray.h"
 #include "hw/memory_config.h"
 #include "hw/tester_timing.h"
 
@@ -56,7 +58,24 @@ struct ShaderConfig {
   /// Cycles from a parent ray's result reaching the result sink to its
   /// children being ready for emission.
   uint32_t latency_cycles = 200;
+  static constexpr uint32_t kUnset = ~uint32_t{0};
+  /// The same by the kind of the parent ray (RayKind order), where given
+  /// (`latency_by_kind`); kUnset: latency_cycles.
+  std::array<uint32_t, kRayKindCount> by_kind{kUnset, kUnset, kUnset, kUnset, kUnset};
+  /// The latency after a result of a ray of kind `parent`.
+  uint32_t latency_for(RayKind parent) const {
+    const uint32_t k = by_kind[static_cast<size_t>(parent)];
+    return k == kUnset ? latency_cycles : k;
+  }
+  bool any_by_kind() const {
+    for (const uint32_t k : by_kind)
+      if (k != kUnset) return true;
+    return false;
+  }
 };
+
+/// `{"latency_cycles": N}`, with `latency_by_kind` (the kinds given) when any is.
+nlohmann::json shader_config_json(const ShaderConfig& s);
 
 /// Each core's traversal controller: every step of a slot (after dispatch,
 /// after a node's box test, a leaf's tests, a stack refill) passes through it

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <functional>
 
+#include "replay/closed_loop.h"
 #include "replay/functional_replayer.h"
 #include "trace/trace_record.h"
 
@@ -11,6 +12,9 @@ namespace vbsim::hw {
 
 /// Gives the next trace ray; false at the end of the trace.
 using RayFeed = std::function<bool(TraceRay&)>;
+/// A closed-loop feed: the next ray at a cycle, none now (more after the next
+/// result) or none ever (replay/closed_loop.h, RayShader::next_ray).
+using ShaderFeed = std::function<ShaderAnswer(TraceRay&, uint64_t cycle)>;
 /// The text of an error located at the ray the feed gave last ("trace.jsonl:
 /// line 12: field 'id': ..."), for checks the model makes on a ray after the
 /// reader has passed it; may be empty (the error then names the trace position).

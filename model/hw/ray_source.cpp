@@ -35,7 +35,7 @@ uint64_t power_of_two_above(uint64_t n) {
 }  // namespace
 
 RaySource::RaySource(sc_core::sc_module_name name, const HwConfig& config, FunctionalReplayer& replayer)
-    : sc_core::sc_module(name), config_(config.source), latency_(config.shader.latency_cycles), replayer_(replayer),
+    : sc_core::sc_module(name), config_(config.source), shader_(config.shader), replayer_(replayer),
       lanes_count_(std::max<uint32_t>(1, config.source.rays_per_cycle)),
       window_(config.source.window), capacity_(static_cast<uint32_t>(power_of_two_above(window_))),
       parent_window_(static_cast<uint64_t>(std::max<int64_t>(1, replayer.options().parent_window))),
@@ -80,17 +80,20 @@ RaySource::RaySource(sc_core::sc_module_name name, const HwConfig& config, Funct
   declare_stat("lane_idle_window_cycles", "lane-cycles",
                "cycles a lane had nothing ready because the window was full of unfinished rays",
                e.lane_idle_window_cycles);
+  declare_stat("lane_idle_shader_cycles", "lane-cycles",
+               "cycles a lane had nothing ready because a closed-loop shader had no ray until a result arrived",
+               e.lane_idle_shader_cycles);
   declare_stat("bundles", "calls", "bundle calls of the emission API", e.bundles);
   declare_stat("bundled_rays", "rays", "rays emitted by bundle calls", e.bundled_rays);
 }
 
 nlohmann::json RaySource::parameters() const {
-  return {{"rays_per_cycle", lanes_count_},
+  nlohmann::json j = {{"rays_per_cycle", lanes_count_},
           {"window", window_},
           {"dependencies", config_.dependencies},
           {"parent_window", parent_window_},
           {"missing_parents", missing_parents_name(config_.missing_parents)},
-          {"shading_latency_cycles", latency_},
+          {"shading_latency_cycles", shader_.latency_cycles},
           {"issue_interval", config_.issue_interval},
           {"sign_bit_cycles", config_.sign_bit_cycles},
           {"emission_op_cycles", config_.emission_op_cycles},
@@ -98,6 +101,8 @@ nlohmann::json RaySource::parameters() const {
           {"emission_depth", config_.emission_depth},
           {"bundles", config_.bundles},
           {"method", replayer_.options().method.name()}};
+  if (shader_.any_by_kind()) j["shading_latency_by_kind"] = shader_config_json(shader_)["latency_by_kind"];
+  return j;
 }
 
 uint64_t RaySource::emission_cycles(const TraceRay& tr) {
@@ -118,6 +123,13 @@ uint64_t RaySource::emission_cycles(const TraceRay& tr) {
   return cost;
 }
 
+void RaySource::set_feed(RayFeed feed) {
+  if (!feed) return feed_ = nullptr, void();
+  feed_ = [trace = std::move(feed)](TraceRay& tr, uint64_t) {
+    return trace(tr) ? ShaderAnswer::Ray : ShaderAnswer::Finished;
+  };
+}
+
 void RaySource::start(SourceHost& host, uint64_t at) {
   host_ = &host;
   for (Lane& l : lanes_) l.idle_since = at;
@@ -134,8 +146,10 @@ bool RaySource::read_one(uint64_t now) {
     staged_.emplace_back();
   }
   const uint32_t place = free_staged_.back();
-  if (!feed_ || !feed_(staged_[place].tr)) {
-    ended_ = true;
+  const ShaderAnswer answer = feed_ ? feed_(staged_[place].tr, now) : ShaderAnswer::Finished;
+  later_ = answer == ShaderAnswer::Later;
+  if (answer != ShaderAnswer::Ray) {
+    ended_ = answer == ShaderAnswer::Finished;
     return false;
   }
   free_staged_.pop_back();
@@ -161,7 +175,8 @@ void RaySource::enter(uint64_t pos, uint64_t now) {
   e.state = State::Ready;
   ++counters_.rays;
   note_position(tr.id, pos);  // the ray leaving the history goes first
-  finish_at(pos) = Finish{kUnfinished, tr.id, kNone};
+  finish_at(pos) = Finish{kUnfinished, tr.id, kNone, tr.kind};
+  e.kind = tr.kind;
   if (config_.dependencies) {
     if (!unresolved_.empty()) {
       const auto child = unresolved_.find(tr.id);
@@ -177,7 +192,8 @@ void RaySource::enter(uint64_t pos, uint64_t now) {
       const ParentAt where = find_parent(tr.parent, pos, parent_pos);
       if (where != ParentAt::Found) {
         parent_not_found(tr, pos, where);
-      } else if (const uint64_t done = finish_at(parent_pos).cycle; done == kUnfinished || done + latency_ > now) {
+      } else if (const Finish& p = finish_at(parent_pos);
+                 p.cycle == kUnfinished || p.cycle + shader_.latency_for(p.kind) > now) {
         return wait_for_parent(pos, parent_pos);
       }
     }
@@ -205,7 +221,7 @@ void RaySource::wait_for_parent(uint64_t pos, uint64_t parent_pos) {
   } else {  // the group's event at its first child's place: it stays while the child waits
     e.next_sibling = kNone;
     parent.group = place_of(pos);
-    host_->schedule_source_event(lanes_count_ + parent.group, parent.cycle + latency_);
+    host_->schedule_source_event(lanes_count_ + parent.group, parent.cycle + shader_.latency_for(parent.kind));
   }
 }
 
@@ -310,12 +326,13 @@ void RaySource::on_finish(uint64_t index, uint64_t at) {
   f.cycle = at;
   if (e.first_child != kNone) {  // its waiting children: one group, its event at the first child's place
     f.group = e.first_child;
-    host_->schedule_source_event(lanes_count_ + f.group, at + latency_);
+    host_->schedule_source_event(lanes_count_ + f.group, at + shader_.latency_for(e.kind));
     e.first_child = kNone;
   }
   const uint64_t old_base = base_;
   while (base_ < next_ && at_pos(base_).state == State::Finished) ++base_;
-  if (base_ != old_base) start_idle_lanes(at);  // the window moved: idle lanes may read further
+  // The window moved, or a closed-loop shader may have made rays of the result: idle lanes read further.
+  if (base_ != old_base || later_) start_idle_lanes(at);
 }
 
 void RaySource::on_slot_free(uint64_t at) {
@@ -396,6 +413,7 @@ void RaySource::try_start(uint32_t lane_id, uint64_t now) {
 void RaySource::account_idle(Lane& lane, uint64_t now) {
   if (lane.idle == Idle::Dependency) emission_.lane_idle_dependency_cycles += now - lane.idle_since;
   if (lane.idle == Idle::Window) emission_.lane_idle_window_cycles += now - lane.idle_since;
+  if (lane.idle == Idle::Shader) emission_.lane_idle_shader_cycles += now - lane.idle_since;
   lane.idle_since = now;
 }
 
@@ -403,7 +421,10 @@ void RaySource::go_idle(uint32_t lane_id, uint64_t now) {
   Lane& lane = lanes_[lane_id];
   lane.count = lane.sent = 0;
   account_idle(lane, now);  // a lane idle already: its time so far, under the reason it had
-  lane.idle = waiting_count_ ? Idle::Dependency : ended_ ? Idle::End : Idle::Window;
+  lane.idle = waiting_count_                 ? Idle::Dependency
+              : ended_                       ? Idle::End
+              : next_ > base_ + window_      ? Idle::Window
+                                             : Idle::Shader;
   lane.idle_since = now;
 }
 
@@ -416,7 +437,8 @@ std::string RaySource::buffer_report() const {
   }
   out << "  ray source: " << next_ - base_ << " rays in the buffer from trace position " << base_ << " (" << waiting
       << " waiting for a parent, " << ready << " ready), " << held_.size() << " lanes holding a ray, trace "
-      << (ended_ ? "ended" : "not ended") << "\n";
+      << (ended_ ? "ended" : later_ ? "not ended (the shader has no ray until a result arrives)" : "not ended")
+      << "\n";
   return out.str();
 }
 

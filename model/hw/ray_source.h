@@ -66,6 +66,7 @@ struct EmissionCounters {
   uint64_t parents_not_found = 0;        ///< child rays whose parent the source could not find (replayed as independent)
   uint64_t lane_idle_dependency_cycles = 0;  ///< lane-cycles idle while buffered rays waited for parents
   uint64_t lane_idle_window_cycles = 0;  ///< lane-cycles idle with the buffer's window full of unfinished rays
+  uint64_t lane_idle_shader_cycles = 0;  ///< lane-cycles idle while a closed-loop shader had no ray yet
   uint64_t bundles = 0, bundled_rays = 0;  ///< bundle calls and the rays they emitted
 };
 
@@ -75,7 +76,10 @@ class RaySource final : public sc_core::sc_module, public RaySourceIf, public St
   RaySource(sc_core::sc_module_name name, const HwConfig& config, FunctionalReplayer& replayer);
 
   /// The trace to emit, and how to name a ray's line in an error (both before the simulation starts).
-  void set_feed(RayFeed feed) override { feed_ = std::move(feed); }
+  void set_feed(RayFeed feed) override;
+  /// A closed-loop feed (RayShader::next_ray): Later leaves the lanes idle
+  /// until a ray finishes, when the source asks again.
+  void set_shader_feed(ShaderFeed feed) override { feed_ = std::move(feed); }
   void set_locator(RayLocator locate) { locate_ = std::move(locate); }
 
   // ---- the scheduler's side ----
@@ -119,10 +123,11 @@ class RaySource final : public sc_core::sc_module, public RaySourceIf, public St
     uint32_t first_child = kNone, next_sibling = kNone;
     uint32_t staged = kNone;  ///< its record in staged_ until dispatched
     State state = State::Finished;
+    RayKind kind = RayKind::Primary;  ///< its kind: the shading latency of its children
   };
   /// Where a child's parent is, as far as the source knows.
   enum class ParentAt : uint8_t { Found, NotBefore, TooFar };
-  enum class Idle : uint8_t { None, Dependency, Window, End };
+  enum class Idle : uint8_t { None, Dependency, Window, Shader, End };
   struct Lane {
     bool emitting = false;
     uint64_t first = 0;   ///< trace position of its first ray
@@ -161,6 +166,7 @@ class RaySource final : public sc_core::sc_module, public RaySourceIf, public St
     uint64_t cycle = kUnfinished;
     int64_t id = 0;  ///< the ray's id (the id table's entries leave the history by it)
     uint32_t group = kNone;
+    RayKind kind = RayKind::Primary;  ///< the ray's kind: the shading latency of its children
   };
   Finish& finish_at(uint64_t pos) { return finish_[pos & (history_capacity_ - 1)]; }
   [[noreturn]] void fail(uint64_t pos, const std::string& field, const std::string& what) const;
@@ -176,9 +182,9 @@ class RaySource final : public sc_core::sc_module, public RaySourceIf, public St
 
   SourceConfig config_;
   uint32_t unit_ops_[2][2] = {};  ///< emission-unit operations by [has a parent surface][shadow]
-  uint32_t latency_;
+  ShaderConfig shader_;  ///< the shading latency, by the kind of the parent ray
   FunctionalReplayer& replayer_;
-  RayFeed feed_;
+  ShaderFeed feed_;
   RayLocator locate_;
   SourceHost* host_ = nullptr;
   uint32_t lanes_count_, window_, capacity_;  // capacity: a power of two above the window
@@ -197,6 +203,7 @@ class RaySource final : public sc_core::sc_module, public RaySourceIf, public St
   uint64_t base_ = 0;  ///< the oldest unfinished position
   uint64_t next_ = 0;  ///< the next position to read
   bool ended_ = false;
+  bool later_ = false;  ///< the feed's last answer was Later: ask again when a ray finishes
   uint64_t waiting_count_ = 0;  ///< buffered rays waiting for a parent
   /// Ids in trace order as first_id_, first_id_ + 1, ... (the usual trace): a ray's
   /// position is its id less first_id_. From the first id off that sequence on,

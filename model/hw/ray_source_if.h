@@ -11,6 +11,7 @@
 // order (docs/hw-model.md, "When a unit is called").
 #pragma once
 #include <cstdint>
+#include <stdexcept>
 #include <string>
 
 #include <systemc>
@@ -45,6 +46,12 @@ class RaySourceIf : public virtual sc_core::sc_interface {
  public:
   /// The rays to emit, in trace order (set before the simulation starts).
   virtual void set_feed(RayFeed feed) = 0;
+  /// A closed-loop feed in place of a trace (RayShader::next_ray): asked at
+  /// the cycle a ray is wanted; after Later, asked again once a ray finishes.
+  /// A source that takes none throws std::logic_error (the default).
+  virtual void set_shader_feed(ShaderFeed) {
+    throw std::logic_error("this ray source takes no closed-loop feed (RaySourceIf::set_shader_feed)");
+  }
   /// Event ids the source uses, 0 .. event_ids() - 1 (fixed once it is built).
   virtual uint32_t event_ids() const = 0;
   /// The run starts at cycle `at`; `host` outlives the run.

@@ -32,6 +32,7 @@ void ResultSink::ray_done(const TraceRay& tr, const EmittedRay& er, const Hit& h
   } else {
     const RayOutcome out = replayer_.conclude(tr, er, hit, rejected);
     if (callback_) callback_(tr, out, now, trace_index);
+    if (shader_) shader_->on_result(tr, out, now);  // its children reach the source (on_finish) next
   }
   SinkCounters& c = counters_;
   const uint64_t latency = now - dispatched;

@@ -32,6 +32,9 @@ class ResultSink final : public sc_core::sc_module, public ResultSinkIf, public 
   /// `replayer` outlives the sink.
   ResultSink(sc_core::sc_module_name name, const HwConfig& config, FunctionalReplayer& replayer);
   void set_callback(RayResultSink callback) { callback_ = std::move(callback); }
+  /// A closed-loop shader (replay/closed_loop.h) that receives every outcome
+  /// after the callback; null: none. Not called when a replacement is bound.
+  void set_shader(RayShader* shader) { shader_ = shader; }
 
   void ray_done(const TraceRay& tr, const EmittedRay& er, const Hit& hit, uint64_t rejected, uint64_t dispatched,
                 uint64_t now, uint64_t trace_index) final;
@@ -46,6 +49,7 @@ class ResultSink final : public sc_core::sc_module, public ResultSinkIf, public 
   FunctionalReplayer& replayer_;
   ResultSinkIf* forward_if_ = nullptr;  // forward's interface, once bound
   RayResultSink callback_;
+  RayShader* shader_ = nullptr;
   uint32_t bucket_cycles_;
   SinkCounters counters_;
 };

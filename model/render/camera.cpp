@@ -49,4 +49,10 @@ Vec3f PinholeCamera::direction(int x, int y) const {
   return forward_ + sx * right_ + sy * up_;
 }
 
+Vec3f PinholeCamera::direction_at(float px, float py) const {
+  const float sx = 2.0f * px / float(width_) - 1.0f;
+  const float sy = 1.0f - 2.0f * py / float(height_);
+  return forward_ + sx * right_ + sy * up_;
+}
+
 }  // namespace vbsim

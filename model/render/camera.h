@@ -29,6 +29,9 @@ class PinholeCamera {
   /// Ray direction (not unit length) through the centre of pixel (x, y);
   /// y = 0 is the top row.
   Vec3f direction(int x, int y) const;
+  /// Ray direction through the image point (px, py) in pixel units: pixel
+  /// (x, y) covers [x, x + 1) x [y, y + 1).
+  Vec3f direction_at(float px, float py) const;
   Vec3f eye() const { return eye_; }
 
  private:

@@ -1,18 +1,31 @@
 // Renderer of `vbsim render`: a small image of a scene in which every ray goes
-// through the replay datapath (FunctionalReplayer: the same emission, tester,
-// self-intersection method and verdicts as `vbsim replay`) and is also
-// answered by the exact oracle, so each pixel knows whether the method got its
-// shadow and bounce rays right.
+// through the replay datapath (the same emission, tester, self-intersection
+// method and verdicts as `vbsim replay`) and is also answered by the exact
+// oracle, so each pixel knows whether the method got its shadow and bounce
+// rays right. The rays come from a closed-loop shader (render/render_shader.h):
+// each child is made from its parent's answer, so a method's errors change the
+// rays that follow. render_scene runs it untimed; render/cycle_render.h runs
+// the same shader on the cycle-level model, with the same image.
 //
-// Per pixel: one primary ray; at its hit, a shadow ray (when the light is on the
-// side the shading normal faces) and one mirror bounce (about the shading
-// normal); at the bounce's hit, its own shadow ray. Child rays start at the
-// barycentric hit point (u, v of the method's hit) and carry parent_t,
-// parent_uv and parent_ns, exactly as a trace's child rays do.
-// Colour: albedo * (ambient + (1 - ambient) * lambert * visible), mixed with the
-// bounce's colour (background when it escapes) by kMirrorWeight.
+// Integrators (docs/render.md):
+// - mirror (default): per pixel one primary ray; at its hit a shadow ray (when
+//   the light is on the side the shading normal faces) and one mirror bounce
+//   (about the shading normal); at the bounce's hit, its own shadow ray.
+//   Colour: albedo * (ambient + (1 - ambient) * lambert * visible), mixed with
+//   the bounce's colour (background when it escapes) by kMirrorWeight.
+// - path: a diffuse path tracer, `samples` jittered paths a pixel, each with a
+//   shadow ray at every hit (next-event estimation) and up to `max_bounces`
+//   cosine-sampled bounces; the random numbers are a hash of (seed, pixel,
+//   sample, bounce), so the image does not depend on the order rays finish.
+// Child rays start at the barycentric hit point (u, v of the method's hit) and
+// carry parent_t, parent_uv and parent_ns, exactly as a trace's child rays do.
+// With children_from_exact, the exact answer decides instead (the reference
+// renderer): its triangle, its t rounded to float32 and the barycentrics of
+// o + t d on that triangle.
 #pragma once
 #include <cstdint>
+#include <functional>
+#include <string>
 #include <vector>
 
 #include "render/camera.h"
@@ -21,15 +34,35 @@
 #include "replay/replay_stats.h"
 #include "scene/bvh.h"
 #include "scene/scene.h"
+#include "trace/trace_record.h"
 
 namespace vbsim {
+
+enum class RenderIntegrator { Mirror, Path };
+const char* render_integrator_name(RenderIntegrator i);  ///< "mirror", "path"
+bool parse_render_integrator(const std::string& s, RenderIntegrator& out);
+
+/// Largest samples per pixel and bounces a path takes.
+constexpr int kMaxRenderSamples = 4096;
+constexpr int kMaxRenderBounces = 16;
 
 struct RenderSettings {
   int width = 160;
   int height = 120;
   CameraSpec camera;
   RenderLight light;
+  RenderIntegrator integrator = RenderIntegrator::Mirror;
+  int samples = 1;      ///< paths a pixel (path: 1..kMaxRenderSamples; mirror: 1)
+  int max_bounces = 2;  ///< diffuse bounces a path takes at most (path: 0..kMaxRenderBounces)
+  uint64_t seed = 1;    ///< of the path tracer's random numbers
+  /// Children (and shadow visibility) from the exact oracle's answers instead
+  /// of the method's: the reference renderer, whose rays do not depend on the
+  /// method; the method still answers (and is scored on) every ray.
+  bool children_from_exact = false;
 };
+
+/// Throws std::invalid_argument naming the setting that is out of range.
+void check_render_settings(const RenderSettings& settings);
 
 /// Per-pixel error marks (bit flags).
 enum PixelMark : uint8_t {
@@ -49,9 +82,12 @@ struct RenderResult {
   ReplayStats stats;                   ///< every ray, verdicts per ray kind, wall_s of the render
 };
 
-/// Renders `scene` with the method, tester and hit-point mode of `options`.
-/// Throws std::invalid_argument on a bad size or camera.
+/// Renders `scene` with the method, tester and hit-point mode of `options`,
+/// untimed. Throws std::invalid_argument on a bad size, camera or setting.
+/// `on_cast` (may be empty) receives every ray as it is cast, its `expect`
+/// filled (a closed-loop trace).
 RenderResult render_scene(const Scene& scene, const Bvh& bvh, const ReplayOptions& options,
-                          const RenderSettings& settings);
+                          const RenderSettings& settings,
+                          const std::function<void(const TraceRay&)>& on_cast = {});
 
 }  // namespace vbsim

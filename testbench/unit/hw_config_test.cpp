@@ -36,6 +36,24 @@ TEST_CASE("hw fields apply on top of a preset", "[hwconfig]") {
   CHECK(c.memory.l1.ways == 8);
 }
 
+TEST_CASE("the shading latency by the parent's kind applies where given and round-trips", "[hwconfig]") {
+  HwConfig c;
+  apply_hw_config(nlohmann::json::parse(R"({"shader": {"latency_cycles": 100,
+                                                       "latency_by_kind": {"primary": 7, "diffuse": 0}}})"),
+                  "f.json", c);
+  CHECK(c.shader.latency_for(RayKind::Primary) == 7);
+  CHECK(c.shader.latency_for(RayKind::Diffuse) == 0);
+  CHECK(c.shader.latency_for(RayKind::Reflect) == 100);
+  CHECK(c.shader.latency_for(RayKind::Shadow) == 100);
+  const nlohmann::json j = hw_config_json(c);
+  CHECK(j["shader"] == nlohmann::json::parse(R"({"latency_cycles": 100,
+                                                "latency_by_kind": {"primary": 7, "diffuse": 0}})"));
+  HwConfig back;
+  apply_hw_config(j, "test", back);
+  CHECK(hw_config_json(back) == j);
+  CHECK(hw_config_json(load_preset("small", "t"))["shader"] == nlohmann::json{{"latency_cycles", 200}});
+}
+
 TEST_CASE("bad hw values are errors naming the field", "[hwconfig]") {
   const std::pair<const char*, const char*> cases[] = {
       {R"({"cores": 0})", "field 'hw.cores'"},
@@ -46,6 +64,9 @@ TEST_CASE("bad hw values are errors naming the field", "[hwconfig]") {
       {R"({"preset": "huge"})", "field 'hw.preset'"},
       {R"({"address_base": 100})", "field 'hw.address_base'"},
       {R"({"box": {"latency": "x"}})", "field 'hw.box.latency'"},
+      {R"({"shader": {"latency_by_kind": {"bounce": 5}}})", "field 'hw.shader.latency_by_kind.bounce'"},
+      {R"({"shader": {"latency_by_kind": {"diffuse": -1}}})", "field 'hw.shader.latency_by_kind.diffuse'"},
+      {R"({"shader": {"latency_by_kind": [1]}})", "field 'hw.shader.latency_by_kind'"},
       {R"({"triangle": {"count": 0}})", "field 'hw.triangle.count'"},
       {R"({"avoidance": {"issue_interval": 0}})", "field 'hw.avoidance.issue_interval'"},
       {R"({"source": {"speed": 1}})", "field 'hw.source.speed'"},
