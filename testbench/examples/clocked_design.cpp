@@ -31,6 +31,8 @@
 #include "replay/replay_run.h"
 #include "trace/trace_source.h"
 
+#include "example_main.h"
+
 namespace {
 
 /// The user's clocked module: on every rising edge, counts it and samples the
@@ -147,11 +149,4 @@ int run(int argc, char** argv) {
 
 }  // namespace
 
-int sc_main(int argc, char** argv) {
-  try {
-    return run(argc, argv);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "clocked_design: %s\n", e.what());
-    return 1;
-  }
-}
+int sc_main(int argc, char** argv) { return vbsim_examples::run_example("clocked_design", run, argc, argv); }

@@ -22,6 +22,8 @@
 #include "replay/replay_run.h"
 #include "trace/trace_source.h"
 
+#include "example_main.h"
+
 namespace {
 
 /// The user's memory: a TLM-2.0 target that answers every read `latency`
@@ -100,11 +102,4 @@ int run(int argc, char** argv) {
 
 }  // namespace
 
-int sc_main(int argc, char** argv) {
-  try {
-    return run(argc, argv);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "embed_accelerator: %s\n", e.what());
-    return 1;
-  }
-}
+int sc_main(int argc, char** argv) { return vbsim_examples::run_example("embed_accelerator", run, argc, argv); }

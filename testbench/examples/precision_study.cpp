@@ -13,6 +13,8 @@
 #include "datapath/self_intersection_method.h"
 #include "hw/examples/precision_study.h"
 
+#include "example_main.h"
+
 namespace {
 
 double percent(uint64_t v, uint64_t base) {
@@ -44,11 +46,4 @@ int run(int argc, char** argv) {
 
 }  // namespace
 
-int sc_main(int argc, char** argv) {
-  try {
-    return run(argc, argv);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "precision_study: %s\n", e.what());
-    return 1;
-  }
-}
+int sc_main(int argc, char** argv) { return vbsim_examples::run_example("precision_study", run, argc, argv); }
