@@ -180,6 +180,10 @@ class Engine final : public CycleEngine, private SourceHost {
     uint64_t requested = 0;    ///< parked: the cycle its read was issued
     uint64_t ready = 0, emitted = 0;  ///< when the ray was ready for emission and its emission started
     uint64_t entered = 0;             ///< when it entered the source's buffer
+    /// Per-triangle fetch (hw.triangle_fetch "triangle"): the leaf's next
+    /// triangle to read, and when its tests issued so far are all done.
+    uint32_t leaf_next = 0;
+    uint64_t leaf_end = 0;
     /// Bytes from the slot's start that a node step reads: the header (core,
     /// request) and the stepper up to its box tester (3 host lines). Leaf steps
     /// read further; prefetching those lines for every step cost more than it
@@ -425,6 +429,12 @@ class Engine final : public CycleEngine, private SourceHost {
         return node_arrived(s, core, id, now, ready, now);
       }
       case StepRequest::Leaf: {
+        if (__builtin_expect(per_triangle_, 0)) {
+          const uint64_t ready =
+              read(s, id, map_.triangle(s.pending.index + s.leaf_next), BvhAddressMap::kTriangleBytes, now);
+          if (__builtin_expect(ready == kPendingCycle, 0)) return park(s, now);
+          return triangle_arrived(s, core, id, now, ready, now);
+        }
         const uint64_t ready =
             read(s, id, map_.triangle(s.pending.index), s.pending.count * BvhAddressMap::kTriangleBytes, now);
         if (__builtin_expect(ready == kPendingCycle, 0)) return park(s, now);
@@ -464,6 +474,37 @@ class Engine final : public CycleEngine, private SourceHost {
     schedule_step(box.done, id);
   }
 
+  /// Triangle `index` of slot `id`'s leaf through the tester (and the
+  /// avoidance unit when it is a suspect), its operands there at `ready`:
+  /// `end` grows to its results' cycle; returns the stepper's outcome and, in
+  /// `issue`, the cycle the tester took it.
+  __attribute__((always_inline)) TriangleStepOutcome test_triangle(Slot& s, const CoreBinding& core, uint32_t id,
+                                                                   uint32_t index, uint64_t ready, uint64_t now,
+                                                                   uint64_t& end, uint64_t& issue) {
+    UnitSchedule tri;
+    TriangleStepOutcome out;
+    bool avoidance = false;
+    if constexpr (kBuiltinUnits) {
+      tri = triangle_op(core, ready, now);
+      out = s.stepper.triangle_step(index);
+      avoidance = out.suspect && avoidance_in_use_;
+    } else {
+      out = s.stepper.triangle_step(index, port_units(s, id, ready, now));
+      tri = call_.triangle;
+      avoidance = call_.avoidance_called;
+    }
+    issue = tri.issue;
+    end = std::max(end, tri.done);
+    if (__builtin_expect(tracing_, 0)) trace_op(id, kTriangle, tri);
+    if (avoidance) {
+      const UnitSchedule a = kBuiltinUnits ? avoidance_op(core, tri.done, now) : call_.avoidance;
+      ++core.core->counters.avoidance_ops_by_kind[static_cast<int>(s.tr.kind)];
+      if (__builtin_expect(tracing_, 0)) trace_op(id, kAvoidance, a);
+      end = std::max(end, a.done);
+    }
+    return out;
+  }
+
   __attribute__((always_inline)) void leaf_arrived(Slot& s, const CoreBinding& core, uint32_t id, uint64_t asked, uint64_t ready, uint64_t now) {
     CoreCounters& cc = core.core->counters;
     const uint32_t first = s.pending.index, count = s.pending.count;
@@ -471,32 +512,34 @@ class Engine final : public CycleEngine, private SourceHost {
     cc.memory_wait_cycles += ready - asked;
     uint64_t end = ready, next_ready = ready;
     for (uint32_t i = 0; i < count; ++i) {
-      UnitSchedule tri;
-      TriangleStepOutcome out;
-      bool avoidance = false;
-      if constexpr (kBuiltinUnits) {
-        tri = triangle_op(core, next_ready, now);
-        out = s.stepper.triangle_step(first + i);
-        avoidance = out.suspect && avoidance_in_use_;
-      } else {
-        out = s.stepper.triangle_step(first + i, port_units(s, id, next_ready, now));
-        tri = call_.triangle;
-        avoidance = call_.avoidance_called;
-      }
-      next_ready = tri.issue + 1;  // a slot hands its pipelines one triangle per cycle
-      end = std::max(end, tri.done);
-      if (__builtin_expect(tracing_, 0)) trace_op(id, kTriangle, tri);
-      if (avoidance) {
-        const UnitSchedule a = kBuiltinUnits ? avoidance_op(core, tri.done, now) : call_.avoidance;
-        ++cc.avoidance_ops_by_kind[static_cast<int>(s.tr.kind)];
-        if (__builtin_expect(tracing_, 0)) trace_op(id, kAvoidance, a);
-        end = std::max(end, a.done);
-      }
+      uint64_t issue = 0;
+      const TriangleStepOutcome out = test_triangle(s, core, id, first + i, next_ready, now, end, issue);
+      next_ready = issue + 1;  // a slot hands its pipelines one triangle per cycle
       if (out.stop) break;
     }
     if (__builtin_expect(tracing_, 0)) trace_step(id, "leaf", asked, end, asked, ready);
     s.pending = s.stepper.leaf_done();
     schedule_step(end, id);
+  }
+
+  /// Per-triangle fetch: the leaf's triangle s.leaf_next has arrived. Its test
+  /// issues; the next triangle's read is the slot's next step, a cycle after
+  /// that issue; after the last (or a stop) the leaf ends when every test has.
+  void triangle_arrived(Slot& s, const CoreBinding& core, uint32_t id, uint64_t asked, uint64_t ready, uint64_t now) {
+    CoreCounters& cc = core.core->counters;
+    if (s.leaf_next == 0) {
+      ++cc.leaf_fetches;
+      s.leaf_end = ready;
+    }
+    cc.memory_wait_cycles += ready - asked;
+    uint64_t issue = 0;
+    const TriangleStepOutcome out =
+        test_triangle(s, core, id, s.pending.index + s.leaf_next, ready, now, s.leaf_end, issue);
+    if (__builtin_expect(tracing_, 0)) trace_step(id, "leaf", asked, issue + 1, asked, ready);
+    if (!out.stop && ++s.leaf_next < s.pending.count) return schedule_step(issue + 1, id);
+    s.leaf_next = 0;
+    s.pending = s.stepper.leaf_done();
+    schedule_step(s.leaf_end, id);
   }
 
   __attribute__((always_inline)) void refill_arrived(Slot& s, const CoreBinding& core, uint32_t id, uint64_t asked, uint64_t ready) {
@@ -531,7 +574,9 @@ class Engine final : public CycleEngine, private SourceHost {
     s.parked = false;
     switch (s.pending.kind) {
       case StepRequest::Node: return node_arrived(s, core, id, s.requested, now, now);
-      case StepRequest::Leaf: return leaf_arrived(s, core, id, s.requested, now, now);
+      case StepRequest::Leaf:
+        return per_triangle_ ? triangle_arrived(s, core, id, s.requested, now, now)
+                             : leaf_arrived(s, core, id, s.requested, now, now);
       case StepRequest::Refill: return refill_arrived(s, core, id, s.requested, now);
       case StepRequest::Done: return finish(id, core, now);
     }
@@ -571,6 +616,7 @@ class Engine final : public CycleEngine, private SourceHost {
   UnitCall call_;                     // the current step's unit call (PortUnits)
   IdealMemory* ideal_;
   bool avoidance_in_use_;
+  const bool per_triangle_ = cfg_.per_triangle_fetch;  // hw.triangle_fetch "triangle"
   // Per kind (0: a leaf's triangles, 1: a node), the modelled address of record `i`: base + stride * i.
   const uint64_t model_base_[2] = {map_.triangle(0), map_.node(0)};
   const uint64_t model_stride_[2] = {BvhAddressMap::kTriangleBytes, BvhAddressMap::kNodeBytes};

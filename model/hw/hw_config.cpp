@@ -206,6 +206,11 @@ void apply_hw_config(const nlohmann::json& j, const std::string& file, HwConfig&
   }
   read_unit(f, "avoidance", cfg.avoidance);
   f.boolean("root_box_test", cfg.root_box_test);
+  f.name("triangle_fetch", [&](const std::string& s) {
+    if (s != "leaf" && s != "triangle") return false;
+    cfg.per_triangle_fetch = s == "triangle";
+    return true;
+  }, "leaf, triangle");
   if (const auto* v = f.get("controller")) {
     Fields fc(*v, file, "hw.controller");
     fc.integer("count", cfg.controller.count, 0, 64);
@@ -307,6 +312,7 @@ nlohmann::json hw_config_json(const HwConfig& c) {
           {"triangle", triangle_json(c)},
           {"avoidance", unit(c.avoidance)},
           {"root_box_test", c.root_box_test},
+          {"triangle_fetch", c.per_triangle_fetch ? "triangle" : "leaf"},
           {"controller",
            {{"count", c.controller.count},
             {"latency", c.controller.latency},

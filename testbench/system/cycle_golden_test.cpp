@@ -76,6 +76,7 @@ void strip_unpinned(nlohmann::json& j) {
       hw.erase("shader");
       hw.erase("controller");
       hw.erase("root_box_test");
+      hw.erase("triangle_fetch");
       for (const char* f : {"warmup_rays", "warmup_cycles", "interval_cycles"}) hw["sim"].erase(f);
     }
   }
