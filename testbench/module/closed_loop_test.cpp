@@ -201,6 +201,18 @@ TEST_CASE("the closed-loop render on the accelerator draws the untimed render's 
   if (method == std::string("none")) CHECK(functional.acne_pixels > 0);  // errors that feed back are there to see
 }
 
+TEST_CASE("a closed-loop render on the accelerator is deterministic", "[module][closed-loop][render]") {
+  const SceneAndBvh& sb = bunny().sb;
+  const RenderSettings rs = small_render(RenderIntegrator::Path, 2);
+  const ReplayOptions opt = method_options("none");
+  const HwConfig cfg = load_preset("large", "test");
+  const CycleRenderResult a = render_scene_cycle(sb.scene, sb.bvh, opt, rs, cfg, {});
+  const CycleRenderResult b = render_scene_cycle(sb.scene, sb.bvh, opt, rs, cfg, {});
+  CHECK(a.render.image == b.render.image);
+  CHECK(a.render.errors == b.render.errors);
+  CHECK(a.run.hw == b.run.hw);  // every figure of the frame, the SystemC time included
+}
+
 TEST_CASE("the rays a closed-loop render cast replay, as a trace, to the same cycles", "[module][closed-loop][render]") {
   const SceneAndBvh& sb = bunny().sb;
   struct Setup {
