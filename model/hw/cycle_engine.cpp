@@ -180,10 +180,8 @@ class Engine final : public CycleEngine, private SourceHost {
     uint64_t requested = 0;    ///< parked: the cycle its read was issued
     uint64_t ready = 0, emitted = 0;  ///< when the ray was ready for emission and its emission started
     uint64_t entered = 0;             ///< when it entered the source's buffer
-    /// Per-triangle fetch (hw.triangle_fetch "triangle"): the leaf's next
-    /// triangle to read, and when its tests issued so far are all done.
+    /// Per-triangle fetch (hw.triangle_fetch "triangle"): the leaf's next triangle to read.
     uint32_t leaf_next = 0;
-    uint64_t leaf_end = 0;
     /// Bytes from the slot's start that a node step reads: the header (core,
     /// request) and the stepper up to its box tester (3 host lines). Leaf steps
     /// read further; prefetching those lines for every step cost more than it
@@ -523,23 +521,20 @@ class Engine final : public CycleEngine, private SourceHost {
   }
 
   /// Per-triangle fetch: the leaf's triangle s.leaf_next has arrived. Its test
-  /// issues; the next triangle's read is the slot's next step, a cycle after
-  /// that issue; after the last (or a stop) the leaf ends when every test has.
+  /// issues at once; the next triangle's read starts hw.triangle_fetch_cycles
+  /// after its result (and avoidance decision), without passing the traversal
+  /// controller; after the last (or a stop) the leaf's end is a step's end.
   void triangle_arrived(Slot& s, const CoreBinding& core, uint32_t id, uint64_t asked, uint64_t ready, uint64_t now) {
     CoreCounters& cc = core.core->counters;
-    if (s.leaf_next == 0) {
-      ++cc.leaf_fetches;
-      s.leaf_end = ready;
-    }
+    cc.leaf_fetches += s.leaf_next == 0;
     cc.memory_wait_cycles += ready - asked;
-    uint64_t issue = 0;
-    const TriangleStepOutcome out =
-        test_triangle(s, core, id, s.pending.index + s.leaf_next, ready, now, s.leaf_end, issue);
-    if (__builtin_expect(tracing_, 0)) trace_step(id, "leaf", asked, issue + 1, asked, ready);
-    if (!out.stop && ++s.leaf_next < s.pending.count) return schedule_step(issue + 1, id);
+    uint64_t end = ready, issue = 0;
+    const TriangleStepOutcome out = test_triangle(s, core, id, s.pending.index + s.leaf_next, ready, now, end, issue);
+    if (__builtin_expect(tracing_, 0)) trace_step(id, "leaf", asked, end, asked, ready);
+    if (!out.stop && ++s.leaf_next < s.pending.count) return events_.schedule(end + cfg_.triangle_fetch_cycles, id);
     s.leaf_next = 0;
     s.pending = s.stepper.leaf_done();
-    schedule_step(s.leaf_end, id);
+    schedule_step(end, id);
   }
 
   __attribute__((always_inline)) void refill_arrived(Slot& s, const CoreBinding& core, uint32_t id, uint64_t asked, uint64_t ready) {

@@ -211,6 +211,7 @@ void apply_hw_config(const nlohmann::json& j, const std::string& file, HwConfig&
     cfg.per_triangle_fetch = s == "triangle";
     return true;
   }, "leaf, triangle");
+  f.integer("triangle_fetch_cycles", cfg.triangle_fetch_cycles, 0, 100000);
   if (const auto* v = f.get("controller")) {
     Fields fc(*v, file, "hw.controller");
     fc.integer("count", cfg.controller.count, 0, 64);
@@ -313,6 +314,7 @@ nlohmann::json hw_config_json(const HwConfig& c) {
           {"avoidance", unit(c.avoidance)},
           {"root_box_test", c.root_box_test},
           {"triangle_fetch", c.per_triangle_fetch ? "triangle" : "leaf"},
+          {"triangle_fetch_cycles", c.triangle_fetch_cycles},
           {"controller",
            {{"count", c.controller.count},
             {"latency", c.controller.latency},

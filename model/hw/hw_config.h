@@ -114,10 +114,11 @@ struct HwConfig {
   bool root_box_test = true;
   /// How a leaf's triangles are read: one read of the whole leaf, then its
   /// tests (false, the default); or each triangle read on its own, its test
-  /// issued when it arrives and the next read after it, every read a step of
-  /// its own through the controller (true: `triangle_fetch` "triangle", as
-  /// rtcore-systemc's intersection unit reads them).
+  /// issued when it arrives and the next triangle's read
+  /// `triangle_fetch_cycles` after its result (true: `triangle_fetch`
+  /// "triangle", as rtcore-systemc's intersection controller reads them).
   bool per_triangle_fetch = false;
+  uint32_t triangle_fetch_cycles = 0;
   MemoryConfig memory;
   uint32_t quantum_cycles = 256;        ///< sim: most cycles the engine runs ahead of SystemC time
   uint32_t latency_bucket_cycles = 32;  ///< sim: width of a latency histogram bucket

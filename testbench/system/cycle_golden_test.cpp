@@ -77,6 +77,7 @@ void strip_unpinned(nlohmann::json& j) {
       hw.erase("controller");
       hw.erase("root_box_test");
       hw.erase("triangle_fetch");
+      hw.erase("triangle_fetch_cycles");
       for (const char* f : {"warmup_rays", "warmup_cycles", "interval_cycles"}) hw["sim"].erase(f);
     }
   }

@@ -251,7 +251,7 @@ TEST_CASE("without the root box test a ray starts with the root node's fetch: th
   CHECK(without.result.hw["units"]["box"]["ops"] == without.result.counters.box.ops);
 }
 
-TEST_CASE("per-triangle fetch: each triangle read on its own, its test issued when it arrives, by hand",
+TEST_CASE("per-triangle fetch: each triangle read after the one before has its result, by hand",
           "[cycle][triangle-fetch]") {
   // The root leaf of three floors, as above, its triangles read one by one.
   const Scene scene = make_scene({floor_at(0), floor_at(-1), floor_at(-2)});
@@ -260,38 +260,40 @@ TEST_CASE("per-triangle fetch: each triangle read on its own, its test issued wh
   bvh.root = {0, 3};
   bvh.root_bounds = box_of(-2, 0);
   bvh.depth = 1;
-  const uint32_t M = 4, Lb = 2, Lt = 9, interval = 3;
+  const uint32_t M = 4, Lb = 2, Lt = 9, F = 3;
   HwConfig cfg = one_slot(M, Lb, Lt, 1);
-  cfg.triangle.issue_interval = interval;
+  cfg.triangle.issue_interval = 3;
   cfg.source.issue_interval = 5;  // the ray is dispatched at cycle 5
   cfg.per_triangle_fetch = true;
+  cfg.triangle_fetch_cycles = F;
   const Run run = run_rays({down_from(7, 1.0f)}, scene, bvh, ReplayOptions{}, cfg);
   REQUIRE(run.rays.at(7).prim == 0);
-  // Root box; read triangle 0 (M), test it at R0; read triangle 1 a cycle
-  // later (M), test at R0 + 1 + M (the tester is free: 1 + M > interval); the
-  // same for triangle 2; its result Lt later.
+  // Root box; read triangle 0 (M) and test it at R0; triangle 1's read starts
+  // F after that result (Lt), its test when it arrives (M); the same for
+  // triangle 2; its result Lt later.
   const uint64_t r0 = 5 + Lb + M;
-  CHECK(run.rays.at(7).cycle == r0 + 2 * (1 + M) + Lt);
+  CHECK(run.rays.at(7).cycle == r0 + 2 * (Lt + F + M) + Lt);
   CHECK(run.result.counters.triangle.ops == 3);
   CHECK(run.result.counters.memory_wait_cycles == 3 * M);
   CHECK(run.result.counters.leaf_fetches == 1);  // one leaf visited, read in three
 
-  // With a controller every read is a step of its own through it: 1 root box +
-  // 3 triangle reads + the end, each its latency C later.
+  // With a traversal controller the leaf is one step, as when it is read
+  // whole: the root box's end and the leaf's end pass it (C each); the
+  // triangles' reads do not.
   const uint32_t C = 6;
   cfg.controller.count = 1;
   cfg.controller.latency = C;
   const Run controlled = run_rays({down_from(7, 1.0f)}, scene, bvh, ReplayOptions{}, cfg);
-  CHECK(controlled.result.counters.controller.ops == 4);
-  CHECK(controlled.rays.at(7).cycle == r0 + C + 2 * (1 + C + M) + Lt + C);
-  // The same tree read leaf by leaf: one step fewer per extra triangle.
+  CHECK(controlled.result.counters.controller.ops == 2);
+  CHECK(controlled.rays.at(7).cycle == r0 + C + 2 * (Lt + F + M) + Lt + C);
+  // Read whole, the leaf's tests issue back to back.
   cfg.per_triangle_fetch = false;
   const Run whole = run_rays({down_from(7, 1.0f)}, scene, bvh, ReplayOptions{}, cfg);
   CHECK(whole.result.counters.controller.ops == 2);
-  CHECK(whole.rays.at(7).prim == 0);
+  CHECK(whole.rays.at(7).cycle == r0 + C + 2 * 3 + Lt + C);
 }
 
-TEST_CASE("per-triangle fetch gives the bundled trace's hits, with more steps and more cycles", "[cycle][triangle-fetch]") {
+TEST_CASE("per-triangle fetch gives the bundled trace's hits, in more cycles", "[cycle][triangle-fetch]") {
   auto src = open_trace(std::string(VBSIM_SOURCE_DIR) + "/traces/bunny/paths.jsonl");
   const SceneAndBvh sb = load_trace_scene(src->header());
   std::vector<TraceRay> rays;
@@ -311,8 +313,7 @@ TEST_CASE("per-triangle fetch gives the bundled trace's hits, with more steps an
   CHECK(differ == 0);
   CHECK(each.result.counters.triangle.ops == leaf.result.counters.triangle.ops);
   CHECK(each.result.counters.leaf_fetches == leaf.result.counters.leaf_fetches);
-  // One step more for each triangle after a leaf's first.
-  CHECK(each.result.counters.controller.ops ==
-        leaf.result.counters.controller.ops + each.result.counters.triangle.ops - leaf.result.counters.leaf_fetches);
+  // The same steps through the controller; each triangle waits for the one before.
+  CHECK(each.result.counters.controller.ops == leaf.result.counters.controller.ops);
   CHECK(each.result.counters.cycles > leaf.result.counters.cycles);
 }
