@@ -156,7 +156,7 @@ TEST_CASE("breadth-first and depth-first traces: children wait for their parents
           }
 }
 
-TEST_CASE("window 0 emits one ray at a time; window 1 keeps the oldest unfinished ray and one more",
+TEST_CASE("window 0 emits one ray at a time, window 1 keeps the oldest unfinished ray and one more",
           "[module][deps][order]") {
   const Trace t = read_trace(bundled());
   const std::vector<TraceRay> rays(t.rays.begin(), t.rays.begin() + 60);

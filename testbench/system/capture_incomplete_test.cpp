@@ -149,7 +149,7 @@ TEST_CASE("capture flattens instances into world-space triangles, every answer E
   CHECK(c.report["links"]["unlinked_occluded"] == 0);
 }
 
-TEST_CASE("capture marks the rays that filter functions changed; replays leave them unscored; compare-reference "
+TEST_CASE("capture marks the rays that filter functions changed, replays leave them unscored, compare-reference "
           "lists every difference", "[cli][capture][incomplete]") {
   const TutorialCapture c = capture_tutorial("intersection_filter");
   CHECK(c.reasons_in_trace == std::set<std::string>{"filter"});

@@ -61,7 +61,7 @@ TEST_CASE("vbsim hw --area: every instance, the avoidance units apart, linear in
         Approx(2 * a1["per_instance_mm2"]["emission_lane"].get<double>()));
 }
 
-TEST_CASE("the operations' energy is the same in both replay modes; hw.energy adds memory and leakage",
+TEST_CASE("the operations' energy is the same in both replay modes, hw.energy adds memory and leakage",
           "[cli][energy]") {
   const auto dir = scratch_dir("energy_modes");
   const std::string trace = source_dir() + "/traces/bunny/paths.jsonl";

@@ -126,7 +126,7 @@ TEST_CASE("SIGTERM ends any command with 130 and leaves no partial output", "[cl
   }
 }
 
-TEST_CASE("check and bench take -q; score and fit say why a pipe cannot be read", "[cli]") {
+TEST_CASE("check and bench take -q, score and fit say why a pipe cannot be read", "[cli]") {
   RunResult r = run_vbsim("check " + kTrace + " -q");
   CHECK(r.exit_code == 0);
   CHECK(r.output.empty());

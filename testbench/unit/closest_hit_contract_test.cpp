@@ -82,7 +82,7 @@ TEST_CASE("the nearer child is searched first, whichever slot holds it", "[close
   }
 }
 
-TEST_CASE("a rejected candidate does not shorten the interval; any-hit stops at the first", "[closest_hit]") {
+TEST_CASE("a rejected candidate does not shorten the interval, any-hit stops at the first", "[closest_hit]") {
   const Bvh bvh = build_bvh(two_floors(), {1});
   Ray ray = make_ray({0.25f, 0.25f, 1}, {0, 0, -1});
   ray.parent_prim = 0;

@@ -49,7 +49,7 @@ Scene flat_square() {
 
 }  // namespace
 
-TEST_CASE("tmin fails on a grazing child ray; validity-bit with vote rejects the re-hit", "[methods]") {
+TEST_CASE("tmin fails on a grazing child ray, validity-bit with vote rejects the re-hit", "[methods]") {
   const Scene scene = flat_square();
   // The hit point landed 1e-6 below the plane; the child leaves at slope 1e-3 toward
   // +x: it meets its own plane again 1e-3 further on, far beyond tmin = 1e-4.
@@ -68,7 +68,7 @@ TEST_CASE("tmin fails on a grazing child ray; validity-bit with vote rejects the
   CHECK(vote.verdict == Verdict::Correct);
 }
 
-TEST_CASE("primid fails next to a shared edge of a flat mesh; validity-bit rejects it", "[methods]") {
+TEST_CASE("primid fails next to a shared edge of a flat mesh, validity-bit rejects it", "[methods]") {
   const Scene scene = flat_square();
   // Hit on triangle 0 right next to the shared edge, rounded 1e-7 below; the child
   // grazes across the edge and re-hits the plane inside triangle 1.

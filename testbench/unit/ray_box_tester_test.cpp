@@ -97,7 +97,7 @@ TEST_CASE("two-child slab test: hand-computed entries, misses and the ray interv
   }
 }
 
-TEST_CASE("slab test never culls a box the exact test meets; its forms agree bit for bit", "[closest_hit]") {
+TEST_CASE("slab test never culls a box the exact test meets, its forms agree bit for bit", "[closest_hit]") {
   std::mt19937 rng(77);
   std::uniform_real_distribution<float> coord(-4, 4), unit(0, 1);
   std::uniform_int_distribution<int> pick(0, 5);
