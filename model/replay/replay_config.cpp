@@ -50,6 +50,8 @@ void apply_replay_config(const nlohmann::json& j, const std::string& file, Repla
   f.boolean("shadow_any_hit", opt.any_hit_for_shadow);
   if (const auto* b = f.get("bvh")) {
     Fields fb(*b, file, "bvh");
+    fb.name("builder", [&](const std::string& s) { return parse_bvh_builder(s, opt.bvh.builder); },
+            "embree, sweep-sah");
     fb.name("quality", [&](const std::string& s) { return parse_bvh_quality(s, opt.bvh.quality); },
             "low, medium, high");
     fb.integer("max_leaf_size", opt.bvh.max_leaf_size);

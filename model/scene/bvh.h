@@ -1,5 +1,5 @@
 // Bvh: the project's compact binary BVH, built by Embree's rtcBuildBVH (SAH)
-// and laid out as a hardware BVH unit fetches it: one 64-byte node fetch gives
+// or by vbsim's own full-sweep SAH builder (sweep_sah_builder.h), and laid out as a hardware BVH unit fetches it: one 64-byte node fetch gives
 // the boxes and references of BOTH children, so an interior node's two box
 // tests need no further fetch.
 //
@@ -90,6 +90,13 @@ enum class BvhQuality { Low, Medium, High };
 const char* bvh_quality_name(BvhQuality q);              ///< "low", "medium", "high"
 bool parse_bvh_quality(const std::string& s, BvhQuality& out);
 
+/// Which builder makes the tree: Embree's rtcBuildBVH (of the options' quality),
+/// or vbsim's own full-sweep SAH builder (sweep_sah_builder.h), which ignores the
+/// quality. Both give the layout below.
+enum class BvhBuilder { Embree, SweepSah };
+const char* bvh_builder_name(BvhBuilder b);              ///< "embree", "sweep-sah"
+bool parse_bvh_builder(const std::string& s, BvhBuilder& out);
+
 /// The largest leaf Embree's builders make (RTC_BUILD_MAX_PRIMITIVES_PER_LEAF),
 /// and the largest SAH traversal cost build_bvh takes.
 constexpr int kMaxBvhLeafSize = 32;
@@ -97,13 +104,15 @@ constexpr float kMaxBvhTraversalCost = 1000.0f;
 
 struct BvhBuildOptions {
   int max_leaf_size = 4;  ///< triangles per leaf at most (1..kMaxBvhLeafSize)
-  BvhQuality quality = BvhQuality::High;
+  BvhQuality quality = BvhQuality::High;  ///< Embree's builder only
+  BvhBuilder builder = BvhBuilder::Embree;
   /// The SAH's cost of a node step against one triangle test's 1 (Embree's
   /// traversalCost), in (0, kMaxBvhTraversalCost]: larger gives fewer, larger
   /// leaves (up to max_leaf_size).
   float traversal_cost = 1.0f;
   bool operator==(const BvhBuildOptions& o) const {
-    return max_leaf_size == o.max_leaf_size && quality == o.quality && traversal_cost == o.traversal_cost;
+    return max_leaf_size == o.max_leaf_size && quality == o.quality && builder == o.builder &&
+           traversal_cost == o.traversal_cost;
   }
 };
 
@@ -118,8 +127,9 @@ struct Bvh {
   int depth = 0;
 };
 
-/// Builds the BVH of `scene` with rtcBuildBVH (`options`: quality, leaf size,
-/// traversal cost; std::invalid_argument when out of range). Every
+/// Builds the BVH of `scene` with the options' builder: rtcBuildBVH (quality,
+/// leaf size, traversal cost) or the sweep SAH (leaf size, traversal cost);
+/// std::invalid_argument when an option is out of range. Every
 /// triangle appears in exactly one leaf; an empty scene gives no nodes and no triangles.
 Bvh build_bvh(const Scene& scene, const BvhBuildOptions& options = {});
 

@@ -1,9 +1,11 @@
-// build_bvh: Embree's rtcBuildBVH (binned SAH at high quality by default, or the
-// options' quality and leaf size; branching factor 2)
+// build_bvh: checks the options and hands a sweep-SAH build to
+// sweep_sah_builder.cpp; otherwise Embree's rtcBuildBVH (binned SAH at high
+// quality by default, or the options' quality and leaf size; branching factor 2)
 // builds a temporary tree in Embree's thread-local allocator; this file then
 // flattens it depth-first into the layout documented in bvh.h.
 //
-// Choices beyond bvh.h (contract for traversal code):
+// Choices beyond bvh.h (contract for traversal code; sweep_sah_builder.cpp keeps
+// them too, with bvh_build_common.h):
 //   - Boxes (child slots and root_bounds) are the exact float32 min/max of the
 //     vertices of the triangles below them, recomputed here (never taken from,
 //     or shrunk to, anything else).
@@ -19,17 +21,24 @@
 #include <cmath>
 #include <algorithm>
 #include <new>
-#include <stdexcept>
 
 #include <embree3/rtcore.h>
 #include <fmt/format.h>
 
 #include "scene/bvh.h"
+#include "scene/bvh_build_common.h"
 #include "scene/embree_device.h"
+#include "scene/sweep_sah_builder.h"
 
 namespace vbsim {
 
 namespace {
+
+using bvh_build::check_options;
+using bvh_build::checked_triangle_bounds;
+using bvh_build::ChildOrder;
+using bvh_build::merge;
+using bvh_build::order_children;
 
 constexpr unsigned kMaxDepth = 32;  // Embree's default depth limit for rtcBuildBVH
 
@@ -85,21 +94,6 @@ void* create_leaf(RTCThreadLocalAllocator alloc, const RTCBuildPrimitive* prims,
   return new (memory) BuildNode{{nullptr, nullptr}, static_cast<uint32_t>(count), ids, {}};
 }
 
-Bounds3f triangle_bounds(const Triangle& t) {
-  Bounds3f b;
-  b.extend(t.v0);
-  b.extend(t.v1);
-  b.extend(t.v2);
-  return b;
-}
-
-Bounds3f merge(const Bounds3f& a, const Bounds3f& b) {
-  Bounds3f m = a;
-  m.extend(b.lo);
-  m.extend(b.hi);
-  return m;
-}
-
 // Fills BuildNode::bounds bottom-up; throws if the tree is malformed.
 void compute_bounds(BuildNode* node, const Scene& scene) {
   if (node == nullptr) throw SceneError("Embree rtcBuildBVH returned an incomplete tree");
@@ -107,26 +101,13 @@ void compute_bounds(BuildNode* node, const Scene& scene) {
     for (uint32_t i = 0; i < node->count; ++i) {
       if (node->prims[i] >= static_cast<uint32_t>(scene.size()))
         throw SceneError(fmt::format("Embree rtcBuildBVH returned unknown primitive {}", node->prims[i]));
-      node->bounds = merge(node->bounds, triangle_bounds(scene.triangles[node->prims[i]]));
+      node->bounds = merge(node->bounds, checked_triangle_bounds(scene, node->prims[i]));
     }
     return;
   }
   compute_bounds(node->children[0], scene);
   compute_bounds(node->children[1], scene);
   node->bounds = merge(node->children[0]->bounds, node->children[1]->bounds);
-}
-
-double centre(const Bounds3f& b, int axis) { return 0.5 * (double(b.lo[axis]) + double(b.hi[axis])); }
-
-// Axis along which the two boxes' centres differ most (ties: lowest axis).
-int split_axis(const Bounds3f& a, const Bounds3f& b) {
-  int best = 0;
-  double best_gap = -1.0;
-  for (int axis = 0; axis < 3; ++axis) {
-    const double gap = std::fabs(centre(a, axis) - centre(b, axis));
-    if (gap > best_gap) best = axis, best_gap = gap;
-  }
-  return best;
 }
 
 // Appends `node`'s subtree (nodes in pre-order, triangles in leaf order) and
@@ -143,14 +124,14 @@ BvhRef flatten(const BuildNode* node, int depth, const Scene& scene, Bvh& bvh) {
   bvh.nodes.emplace_back();
   const BuildNode* first = node->children[0];
   const BuildNode* second = node->children[1];
-  const int axis = split_axis(first->bounds, second->bounds);
-  if (centre(second->bounds, axis) < centre(first->bounds, axis)) std::swap(first, second);
+  const ChildOrder order = order_children(first->bounds, second->bounds);
+  if (order.swap) std::swap(first, second);
   const BvhRef first_ref = flatten(first, depth + 1, scene, bvh);
   const BvhRef second_ref = flatten(second, depth + 1, scene, bvh);
   BvhNode& n = bvh.nodes[index];  // taken after the recursion: `nodes` may have grown
   n.set_child(0, first->bounds, first_ref);
   n.set_child(1, second->bounds, second_ref);
-  n.axis = static_cast<uint32_t>(axis);
+  n.axis = static_cast<uint32_t>(order.axis);
   return BvhRef{index, 0};
 }
 
@@ -200,13 +181,20 @@ bool parse_bvh_quality(const std::string& s, BvhQuality& out) {
   return false;
 }
 
+const char* bvh_builder_name(BvhBuilder b) { return b == BvhBuilder::SweepSah ? "sweep-sah" : "embree"; }
+
+bool parse_bvh_builder(const std::string& s, BvhBuilder& out) {
+  for (BvhBuilder b : {BvhBuilder::Embree, BvhBuilder::SweepSah})
+    if (s == bvh_builder_name(b)) {
+      out = b;
+      return true;
+    }
+  return false;
+}
+
 Bvh build_bvh(const Scene& scene, const BvhBuildOptions& options) {
-  if (!(options.traversal_cost > 0 && options.traversal_cost <= kMaxBvhTraversalCost))
-    throw std::invalid_argument(fmt::format("BvhBuildOptions.traversal_cost must be in (0, {}], got {}",
-                                            kMaxBvhTraversalCost, options.traversal_cost));
-  if (options.max_leaf_size < 1 || options.max_leaf_size > kMaxBvhLeafSize)
-    throw std::invalid_argument(fmt::format("BvhBuildOptions.max_leaf_size must be in 1..{}, got {}",
-                                            kMaxBvhLeafSize, options.max_leaf_size));
+  check_options(options);
+  if (options.builder == BvhBuilder::SweepSah) return build_sweep_sah_bvh(scene, options);
 
   Bvh bvh;
   if (scene.triangles.empty()) return bvh;  // no nodes, no triangles, depth 0
@@ -214,10 +202,7 @@ Bvh build_bvh(const Scene& scene, const BvhBuildOptions& options) {
   std::vector<RTCBuildPrimitive> prims(scene.triangles.size());
   float largest = 0.0f;  // largest |coordinate|
   for (size_t i = 0; i < prims.size(); ++i) {
-    const Triangle& t = scene.triangles[i];
-    if (!is_finite(t.v0) || !is_finite(t.v1) || !is_finite(t.v2))
-      throw SceneError(fmt::format("scene '{}': triangle {} has a non-finite vertex", scene.source, i));
-    const Bounds3f b = triangle_bounds(t);
+    const Bounds3f b = checked_triangle_bounds(scene, i);
     for (int axis = 0; axis < 3; ++axis)
       largest = std::max({largest, std::fabs(b.lo[axis]), std::fabs(b.hi[axis])});
     prims[i] = RTCBuildPrimitive{b.lo.x, b.lo.y, b.lo.z, 0u, b.hi.x, b.hi.y, b.hi.z, static_cast<unsigned>(i)};

@@ -6,15 +6,13 @@
 
 #include <fmt/format.h>
 
+#include "scene/bvh_build_common.h"
+
 namespace vbsim {
 
 namespace {
 
-double surface_area(const Bounds3f& b) {
-  const double dx = double(b.hi.x) - b.lo.x, dy = double(b.hi.y) - b.lo.y, dz = double(b.hi.z) - b.lo.z;
-  if (dx < 0 || dy < 0 || dz < 0) return 0.0;
-  return 2.0 * (dx * dy + dy * dz + dz * dx);
-}
+using bvh_build::surface_area;
 
 struct Pending {
   BvhRef ref;

@@ -38,6 +38,9 @@ void add_method_options(CLI::App& app, MethodOptions& o, const std::string& defa
   app.add_option("--vb-min-exponent", o.vb_min_exponent, "validity-bit: minimum biased exponent [110]");
   app.add_option("--vb-tests", o.vb_tests, "validity-bit: epsilon tests, comma list of normal,ray,component [normal,ray]");
   app.add_option("--vb-component-scale", o.vb_component_scale, "validity-bit: component test multiplier [0.577]");
+  app.add_option("--bvh-builder", o.bvh_builder,
+                 "the BVH's builder: embree (rtcBuildBVH, of --bvh-quality) or sweep-sah (vbsim's full-sweep SAH; "
+                 "no quality); hits do not depend on it, the work does [embree]");
   app.add_option("--bvh-quality", o.bvh_quality,
                  "the BVH's build: Embree's low (Morton), medium or high (binned SAH) quality; hits do not depend "
                  "on it, the work does [high]");
@@ -85,6 +88,7 @@ void apply_command_line(const MethodOptions& o, ReplayOptions& opt) {
   if (o.vb_guard_bits) j["validity_bit"]["guard_bits"] = *o.vb_guard_bits;
   if (o.vb_min_exponent) j["validity_bit"]["min_exponent"] = *o.vb_min_exponent;
   if (o.vb_component_scale) j["validity_bit"]["component_scale"] = *o.vb_component_scale;
+  if (o.bvh_builder) j["bvh"]["builder"] = *o.bvh_builder;
   if (o.bvh_quality) j["bvh"]["quality"] = *o.bvh_quality;
   if (o.bvh_leaf_size) j["bvh"]["max_leaf_size"] = *o.bvh_leaf_size;
   if (o.bvh_traversal_cost) j["bvh"]["traversal_cost"] = *o.bvh_traversal_cost;

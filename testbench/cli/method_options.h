@@ -21,7 +21,7 @@ struct MethodOptions {
   std::optional<std::string> vb_policy, vb_eps_mode, vb_tests;
   std::optional<float> vb_eps, vb_component_scale;
   std::optional<int> vb_guard_bits, vb_min_exponent;
-  std::optional<std::string> bvh_quality;
+  std::optional<std::string> bvh_builder, bvh_quality;
   std::optional<int> bvh_leaf_size;
   std::optional<float> bvh_traversal_cost;
   int64_t parent_window = ParentRayStore::kDefaultWindow;  ///< --parent-window

@@ -1,6 +1,7 @@
 #!/usr/bin/python3
 """scripts/rtcore_crossval.py without rtcore-systemc: it skips with a message and writes
-nothing; its reading of rtcore's log and its measured cycle, on a log made by hand."""
+nothing; its reading of rtcore's log and its measured cycle, on a log made by hand; its
+page over both of vbsim's trees, from figures made by hand."""
 import os
 import subprocess
 import sys
@@ -60,6 +61,30 @@ class CrossvalTest(unittest.TestCase):
             self.assertEqual(rtcore_crossval.measured_cycle([30, 10, 20, 40], 5), 30)  # the 3rd of 5
             with self.assertRaises(SystemExit):
                 rtcore_crossval.measured_cycle([10], 5)
+
+    def test_page_has_both_trees(self):
+        args = [512] * 3 + [0.5, 0.47, 4, 4, 1]
+        n = 4
+        rt = {"cycles": 300, "end": 400, "latency": [100, 110, None, 120],
+              "counts": {"lp": 16, "hp": 4, "ist": 8, "m_rtcore.m_ist_l1c.miss": 6}}
+
+        def vbsim(cycles, box_ops, triangle_ops):
+            return {"cycles": cycles, "latency": [90, 100, 95, 130],
+                    "hw": {"utilisation": {"box": 0.5, "triangle": 0.95},
+                           "units": {"box": {"ops": box_ops}, "triangle": {"ops": triangle_ops}},
+                           "memory": {"port": {"l1": {"misses": 5}, "dram": {"reads": 5}}}}}
+
+        with mock.patch.object(rtcore_crossval, "TAIL_RAYS", 1):
+            rows = [{"embree": rtcore_crossval.row("a regime", "bound", args, rt, vbsim(294, 16, 8), n),
+                     "sweep": rtcore_crossval.row("a regime", "bound", args, rt, vbsim(288, 15, 7), n)}]
+            text = rtcore_crossval.page(rows, n, os.path.join(ROOT, "traces", "x.obj"), "rays.bin")
+        self.assertAlmostEqual(rows[0]["embree"]["difference"], -0.02)
+        self.assertAlmostEqual(rows[0]["sweep"]["difference"], -0.04)
+        self.assertIn("vbsim over its default tree (Embree's", text)
+        self.assertIn("`--bvh-builder sweep-sah --bvh-leaf-size 16`", text)
+        self.assertEqual(text.count("Within 5%: 1 of 1 regimes."), 2)
+        self.assertIn("| a regime | -2.0% | -4.0% | +2.0 points |", text)
+        self.assertIn("- **a regime** (-2.0%; -4.0% over the sweep-SAH tree)", text)
 
 
 if __name__ == "__main__":

@@ -1,8 +1,8 @@
 // Hits do not depend on the BVH (docs/hw-model.md, "The BVH"): the bundled
 // trace and tie-heavy scenarios (spawn points ulps from shared edges, coplanar
-// duplicates) replayed over trees of Embree's three qualities, leaves of 1 to 32
-// triangles and SAH traversal costs 1 to 16, functionally and on the cycle-level
-// model, give every closest-hit ray the same triangle, distance, barycentrics and
+// duplicates) replayed over trees of Embree's three qualities and of the sweep-SAH
+// builder, leaves of 1 to 32 triangles and SAH traversal costs 1 to 16,
+// functionally and on the cycle-level model, give every closest-hit ray the same triangle, distance, barycentrics and
 // front/back bit, and every shadow ray (any hit) the same occlusion and verdict.
 #include <catch2/catch.hpp>
 
@@ -21,12 +21,13 @@ namespace fs = std::filesystem;
 using vbsim::test::run_vbsim;
 
 struct Build {
-  const char* quality;
+  const char* quality;  ///< Embree's quality, or "sweep-sah" for that builder
   int leaf;
   int cost;
   std::string options() const {
-    return std::string(" --bvh-quality ") + quality + " --bvh-leaf-size " + std::to_string(leaf) +
-           " --bvh-traversal-cost " + std::to_string(cost);
+    const std::string builder = std::string(quality) == "sweep-sah" ? " --bvh-builder sweep-sah"
+                                                                     : std::string(" --bvh-quality ") + quality;
+    return builder + " --bvh-leaf-size " + std::to_string(leaf) + " --bvh-traversal-cost " + std::to_string(cost);
   }
 };
 
@@ -62,8 +63,8 @@ nlohmann::json comparable(const nlohmann::json& hit, bool shadow) {
 
 void check_independent(const fs::path& trace, const fs::path& dir, const std::string& method) {
   const auto kinds = shadow_rays(trace);
-  const Build builds[] = {{"high", 4, 1}, {"medium", 4, 1}, {"low", 4, 1}, {"high", 1, 1}, {"high", 16, 8},
-                          {"medium", 32, 16}};
+  const Build builds[] = {{"high", 4, 1},      {"medium", 4, 1},      {"low", 4, 1},         {"high", 1, 1},
+                          {"high", 16, 8},     {"medium", 32, 16},    {"sweep-sah", 4, 1},   {"sweep-sah", 16, 1}};
   std::vector<nlohmann::json> reference;
   int n = 0;
   for (const Build& b : builds)
@@ -114,5 +115,20 @@ TEST_CASE("hits do not depend on the BVH: ties on shared edges and coplanar tria
       }
     CHECK(traces == (std::string(scenario) == "coplanar" ? 1 : 3));
   }
+  fs::remove_all(dir);
+}
+
+TEST_CASE("the BVH builder option is echoed in the stats, and an unknown builder is a usage error", "[system][bvh-options]") {
+  const auto dir = vbsim::test::scratch_dir("bvh_builder_option");
+  const fs::path trace = fs::path(VBSIM_SOURCE_DIR) / "traces/bunny/paths.jsonl";
+  const fs::path stats = dir / "stats.json";
+  REQUIRE(run_vbsim("replay " + trace.string() + " -q --bvh-builder sweep-sah --stats " + stats.string()).exit_code ==
+          0);
+  std::ifstream in(stats);
+  CHECK(nlohmann::json::parse(in)["config"]["bvh"]["builder"] == "sweep-sah");
+  const auto bad = run_vbsim("replay " + trace.string() + " -q --bvh-builder sah");
+  INFO(bad.output);
+  CHECK(bad.exit_code == 2);
+  CHECK_THAT(bad.output, Catch::Contains("bvh.builder") && Catch::Contains("embree, sweep-sah"));
   fs::remove_all(dir);
 }

@@ -127,13 +127,20 @@ TEST_CASE("a replay config's bvh build options are read, checked and echoed", "[
   CHECK(opt.bvh.quality == BvhQuality::Low);
   CHECK(opt.bvh.max_leaf_size == 16);
   CHECK(opt.bvh.traversal_cost == 4.0f);
+  CHECK(opt.bvh.builder == BvhBuilder::Embree);  // the default
   const nlohmann::json echo = replay_config_json(opt)["bvh"];
-  CHECK(echo == nlohmann::json::parse(R"({"quality": "low", "max_leaf_size": 16, "traversal_cost": 4.0})"));
+  CHECK(echo == nlohmann::json::parse(
+                    R"({"builder": "embree", "quality": "low", "max_leaf_size": 16, "traversal_cost": 4.0})"));
   ReplayOptions back;
   apply_replay_config(nlohmann::json{{"bvh", echo}}, "f", back);
   CHECK(back.bvh == opt.bvh);
+  apply_replay_config(nlohmann::json::parse(R"({"bvh": {"builder": "sweep-sah"}})"), "f", back);
+  CHECK(back.bvh.builder == BvhBuilder::SweepSah);
+  CHECK(replay_config_json(back)["bvh"]["builder"] == "sweep-sah");
+  CHECK_FALSE(back.bvh == opt.bvh);
   for (const char* bad : {R"({"bvh": {"quality": "best"}})", R"({"bvh": {"max_leaf_size": 33}})",
-                          R"({"bvh": {"traversal_cost": 0}})", R"({"bvh": {"leaves": 2}})"}) {
+                          R"({"bvh": {"traversal_cost": 0}})", R"({"bvh": {"leaves": 2}})",
+                          R"({"bvh": {"builder": "sah"}})"}) {
     INFO(bad);
     ReplayOptions o;
     CHECK_THROWS_WITH(apply_replay_config(nlohmann::json::parse(bad), "cfg.json", o),
