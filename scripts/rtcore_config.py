@@ -7,7 +7,8 @@
 
 The arguments are rtcore-systemc's `tb_top` arguments after its two file names, in its
 order, with its defaults (512 512 512 0.5 0.47 4 4 1). The JSON printed is
-`{"hw": {...}}` on top of vbsim's `rtcore` preset (model/hw/presets/rtcore.json);
+`{"hw": {...}, "bvh": {"low_precision": {...}}}` on top of vbsim's `rtcore` preset
+(model/hw/presets/rtcore.json) and its node marking (scene/bvh_precision.h);
 docs/hw-model.md, "Modelling rtcore-systemc", says how each part maps and what the
 mapping cannot express; those parts are also named on stderr.
 """
@@ -23,6 +24,7 @@ KINDS = [int, int, int, float, float, int, int, int]
 LP_BYTES, HP_BYTES, IST_BYTES = 40, 64, 36  # bytes per entry of the three L1 caches
 LINE_BYTES = 64                              # vbsim's line (a node is one line)
 LP_LATENCY, IST_LATENCY = 20, 32             # box (both pools) and triangle latency, cycles
+MANTISSA_BITS = 7                            # rtcore's low-precision bounds (params.hpp: mantissa_width)
 MAX_WAYS = 65536                             # vbsim's largest associativity
 
 
@@ -53,22 +55,24 @@ def config(a):
         raise UsageError(f"the three L1 caches hold {cache_bytes} bytes, more than {MAX_WAYS} lines of {LINE_BYTES}")
     return {"hw": {
         "preset": "rtcore",
-        # One box pool: the low-precision pool's units (most nodes of rtcore's
-        # default marking go there); each unit holds an operation LP_LATENCY cycles.
-        "box": {"count": a["NUM_LP"], "latency": LP_LATENCY, "issue_interval": LP_LATENCY},
+        # Two box pools: the full-precision one (NUM_HP) and the low-precision
+        # one (NUM_LP), each unit holding an operation LP_LATENCY cycles.
+        "box": {"count": a["NUM_HP"], "latency": LP_LATENCY, "issue_interval": LP_LATENCY},
+        "box_low": {"count": a["NUM_LP"], "latency": LP_LATENCY, "issue_interval": LP_LATENCY},
         "triangle": {"count": a["NUM_IST"], "latency": IST_LATENCY, "issue_interval": IST_LATENCY},
         # The three object caches as one fully associative L1 of the same bytes.
         "memory": {"l1": {"size_bytes": lines * LINE_BYTES, "ways": "full"}},
-    }}
+    },
+        # rtcore's marking of nodes as low or high precision, by its two traversal costs.
+        "bvh": {"low_precision": {"mantissa_bits": MANTISSA_BITS, "t_trav_high": a["T_TRAV_HIGH"],
+                                  "t_trav_low": a["T_TRAV_LOW"]}}}
 
 
 def not_modelled(a):
     """What of `a` the configuration cannot express."""
-    notes = [f"T_TRAV_HIGH {a['T_TRAV_HIGH']} and T_TRAV_LOW {a['T_TRAV_LOW']}: vbsim has no low/high-precision "
-             "node marking (one box pool, full precision)"]
-    if a["NUM_HP"] != a["NUM_LP"]:
-        notes.append(f"NUM_HP {a['NUM_HP']}: vbsim has one box pool, sized as NUM_LP {a['NUM_LP']}")
-    return notes
+    return ["the low-precision pool's box test: rtcore intersects in its narrow arithmetic, vbsim in float32 "
+            "on the boxes rounded outward (the same boxes met or more)",
+            "the caches: rtcore's three object caches are one L1 of the same bytes in 64-byte lines"]
 
 
 def main(argv):

@@ -175,14 +175,19 @@ def row(name, bound, args, rt, vb, n):
     rt_nodes = c.get("lp", 0) + c.get("hp", 0)
     rt_misses = sum(v for k, v in c.items() if k.endswith(".miss"))
     rt_busy = busiest_rtcore(args, c, rt["end"])
-    vb_busy = {k: hw["utilisation"][k] for k in ("box", "triangle")}
+    # vbsim's pools by rtcore's names: its full-precision box unit (hp), its low-precision pool (lp).
+    vb_busy = {"box (hp)": hw["utilisation"]["box"], "box (lp)": hw["utilisation"].get("box_low", 0.0),
+               "triangle": hw["utilisation"]["triangle"]}
+    vb_high = hw["units"]["box"]["ops"]
+    vb_low = hw["units"]["box_low"]["ops"] if "box_low" in hw["units"] else 0
     port = hw["memory"]["port"]
     return {
         "regime": name, "bound": bound, "args": " ".join(map(str, args)),
         "rtcore_cycles_per_ray": rt_cpr, "vbsim_cycles_per_ray": vb_cpr,
         "difference": vb_cpr / rt_cpr - 1, "latency_correlation": pearson(rt_lat, vb_lat),
         "rtcore_mean_latency": statistics.fmean(rt_lat), "vbsim_mean_latency": statistics.fmean(vb_lat),
-        "rtcore_nodes_per_ray": rt_nodes / n, "vbsim_box_ops_per_ray": hw["units"]["box"]["ops"] / n,
+        "rtcore_nodes_per_ray": rt_nodes / n, "vbsim_box_ops_per_ray": (vb_high + vb_low) / n,
+        "vbsim_lp_per_ray": vb_low / n, "vbsim_hp_per_ray": vb_high / n,
         "rtcore_triangles_per_ray": c.get("ist", 0) / n, "vbsim_triangles_per_ray": hw["units"]["triangle"]["ops"] / n,
         "rtcore_l1_misses": rt_misses, "vbsim_l1_misses": port["l1"]["misses"], "vbsim_dram_reads": port["dram"]["reads"],
         "rtcore_l1_misses_per_ray": rt_misses / n, "vbsim_l1_misses_per_ray": port["l1"]["misses"] / n,
@@ -202,15 +207,15 @@ def explain(r, tree):
     if rt_unit == vb_unit == "triangle" and min(rt_b, vb_b) >= 0.9:
         parts.append(f"both bound by the triangle units, so the cycles follow the triangle tests: vbsim's tree "
                      f"needs {tri:+.1%} a ray, the cycles differ by {r['difference']:+.1%}")
-    elif vb_unit == "box" and rt_unit.startswith("box") and min(rt_b, vb_b) >= 0.9:
-        pool, units = ("lp", lp_units) if rt_unit == "box (lp)" else ("hp", hp_units)
-        rt_pool = r[f"rtcore_{pool}_per_ray"]
-        predicted = (r["vbsim_box_ops_per_ray"] / lp_units) / (rt_pool / units) - 1
-        parts.append(f"both bound by box units: vbsim's one pool of {lp_units} does every node test "
-                     f"({r['vbsim_box_ops_per_ray']:.2f} a ray), rtcore's {pool} pool of {units} only its "
-                     f"{rt_pool:.2f} (its other pool the other {r['rtcore_nodes_per_ray'] - rt_pool:.2f}, in "
-                     f"parallel): the work alone predicts {predicted:+.1%}, measured {r['difference']:+.1%}; the "
-                     "rest is the two pools' sharing, which one pool cannot express")
+    elif vb_unit.startswith("box") and rt_unit.startswith("box") and min(rt_b, vb_b) >= 0.9:
+        pool = "lp" if vb_unit == "box (lp)" else "hp"
+        units = lp_units if pool == "lp" else hp_units
+        rt_pool, vb_pool = r[f"rtcore_{pool}_per_ray"], r[f"vbsim_{pool}_per_ray"]
+        predicted = vb_pool / rt_pool - 1 if rt_pool else float("nan")
+        parts.append(f"both bound by box units: vbsim's busiest pool ({pool}, {units} units) tests "
+                     f"{vb_pool:.2f} nodes a ray, rtcore's {rt_pool:.2f} (the other pool: vbsim "
+                     f"{r['vbsim_box_ops_per_ray'] - vb_pool:.2f}, rtcore {r['rtcore_nodes_per_ray'] - rt_pool:.2f}); "
+                     f"that pool's work alone predicts {predicted:+.1%}, measured {r['difference']:+.1%}")
     elif r["rtcore_l1_misses_per_ray"] > 1:
         parts.append(f"memory-bound: vbsim misses {r['vbsim_l1_misses_per_ray']:.2f} 64-byte lines a ray, each "
                      f"a DRAM read of 321 cycles (64 bytes x 5 + 1); rtcore {r['rtcore_l1_misses_per_ray']:.2f} "
@@ -242,8 +247,9 @@ def page(rows, n, scene, rays_file):
            "a slot to its result, and its correlation the Pearson coefficient over the rays rtcore finished. "
            "Node and triangle tests and misses are whole-run counts.", ""]
     header = ["| regime | rtcore arguments | rtcore cycles/ray | vbsim cycles/ray | difference | latency correlation | "
-              "node tests/ray rtcore, vbsim | triangle tests/ray rtcore, vbsim | L1 misses rtcore, vbsim |",
-              "|---|---|---|---|---|---|---|---|---|"]
+              "node tests/ray rtcore, vbsim | low-precision share rtcore, vbsim | "
+              "triangle tests/ray rtcore, vbsim | L1 misses rtcore, vbsim |",
+              "|---|---|---|---|---|---|---|---|---|---|"]
 
     def table(key):
         lines = []
@@ -253,6 +259,8 @@ def page(rows, n, scene, rays_file):
                          f"{r['vbsim_cycles_per_ray']:.2f} | {r['difference']:+.1%} | "
                          f"{r['latency_correlation']:.3f} | "
                          f"{r['rtcore_nodes_per_ray']:.2f}, {r['vbsim_box_ops_per_ray']:.2f} | "
+                         f"{r['rtcore_lp_per_ray'] / r['rtcore_nodes_per_ray']:.0%}, "
+                         f"{r['vbsim_lp_per_ray'] / r['vbsim_box_ops_per_ray']:.0%} | "
                          f"{r['rtcore_triangles_per_ray']:.2f}, {r['vbsim_triangles_per_ray']:.2f} | "
                          f"{r['rtcore_l1_misses']:,}, {r['vbsim_l1_misses']:,} |")
         within = sum(abs(row[key]["difference"]) <= 0.05 for row in rows)
@@ -272,9 +280,12 @@ def page(rows, n, scene, rays_file):
         r, q = row[first], row[second]
         out.append(f"- **{r['regime']}** ({r['difference']:+.1%}; {q['difference']:+.1%} over the sweep-SAH tree): "
                    f"{explain(r, first_tree)}. Over the sweep-SAH tree: {explain(q, second_tree)}.")
-    out += ["", "rtcore's node tests count each pool's operations (a node's two boxes each); vbsim's count its box "
-            "unit's operations (two boxes each; the `rtcore` preset, as rtcore, fetches the root node first and "
-            "tests no root box at dispatch). rtcore's L1 misses are its three "
+    out += ["", "rtcore's node tests count each pool's operations (a node's two boxes each); vbsim's count its two "
+            "pools' operations (two boxes each; the `rtcore` preset, as rtcore, fetches the root node first and "
+            "tests no root box at dispatch, visits a popped subtree beyond the hit all the same and reads a leaf's "
+            "triangles one by one). Both mark nodes low or high precision by rtcore's cost model (vbsim's "
+            "implementation, `scene/bvh_precision.h`); the low-precision share is the part of the node tests the "
+            "low-precision pool did. rtcore's L1 misses are its three "
             "object caches' (a bounding box, node record or triangle each); vbsim's are 64-byte lines of its one L1.",
             "", "vbsim's sweep-SAH builder splits as rtcore's builder does (a full sweep over the triangles' "
             "centroids, traversal cost 1, a median split past the largest leaf), so the node and triangle tests "

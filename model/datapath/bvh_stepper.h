@@ -197,6 +197,10 @@ class BvhStepper {
   /// to the root (the hit is the same; the work is not).
   void set_root_box_test(bool on) { root_box_test_ = on; }
   bool root_box_test() const { return root_box_test_; }
+  /// Whether a popped subtree whose entry lies beyond the closest hit so far
+  /// is skipped (true, the default) or visited all the same, its boxes and
+  /// triangles tested against the hit (the hit is the same; the work is not).
+  void set_pop_culling(bool on) { pop_culling_ = on; }
   /// Host bytes of the traversal stack, the stepper's last member (a timing
   /// model may prefetch the stepper's other members before a step).
   static constexpr size_t stack_host_bytes() { return sizeof(Entry) * (kTraversalStackDepth + 1); }
@@ -231,7 +235,7 @@ class BvhStepper {
       --sp_;
       --onchip_;
       ++tc_->stack_pops;
-      if (stack_[sp_].t > cull_limit(tmax_)) continue;
+      if (pop_culling_ && stack_[sp_].t > cull_limit(tmax_)) continue;
       return visit(BvhRef{stack_[sp_].index, stack_[sp_].count});
     }
   }
@@ -258,6 +262,7 @@ class BvhStepper {
   bool finished_ = false;
   bool any_hit_ = false;
   bool root_box_test_ = true;
+  bool pop_culling_ = true;
   const CandidateFilter* filter_;
   CandidateCounters* cc_ = nullptr;
   Hit best_;

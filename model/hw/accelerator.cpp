@@ -178,8 +178,8 @@ EngineParts Accelerator::engine_parts() {
   bool all_l1 = true, all_ideal = ideal_ != nullptr;
   for (RayTestCore& c : cores_) {
     MemoryReadIf* mem = c.memory.operator->();
-    p.cores.push_back({&c, c.builtin_box(), c.box.operator->(), c.builtin_triangle(), c.triangle.operator->(),
-                       c.builtin_avoidance(), c.avoidance.operator->(), mem});
+    p.cores.push_back({&c, c.builtin_box(), c.box.operator->(), c.box_low_unit(), c.builtin_triangle(),
+                       c.triangle.operator->(), c.builtin_avoidance(), c.avoidance.operator->(), mem});
     all_l1 &= c.l1() != nullptr && mem == static_cast<MemoryReadIf*>(c.l1());
     all_ideal &= ideal_ && mem == static_cast<MemoryReadIf*>(ideal_.get());
   }
@@ -344,6 +344,7 @@ HwCounters Accelerator::chip_counters() const {
   for (const RayTestCore& core : cores_) {
     const CoreCounters& k = core.counters;
     add_unit(c.box, core.builtin_box(), k.replaced_units[CoreCounters::kBox]);
+    if (const BoxUnit* low = core.box_low_unit()) add(c.box_low, low->counters());
     add_unit(c.triangle, core.builtin_triangle(), k.replaced_units[CoreCounters::kTriangle]);
     add_unit(c.avoidance, core.builtin_avoidance(), k.replaced_units[CoreCounters::kAvoidance]);
     c.controller.ops += k.controller.ops;

@@ -76,6 +76,7 @@ class Engine final : public CycleEngine, private SourceHost {
       slots_.emplace_back(p.bvh, p.replayer.filter(), static_cast<int>(p.config.stack_depth),
                           i / p.config.slots_per_core);
       slots_.back().stepper.set_root_box_test(p.config.root_box_test);
+      slots_.back().stepper.set_pop_culling(p.config.pop_culling);
     }
     if (tracing_) set_up_tracing();
     if (sampling_) {
@@ -217,6 +218,7 @@ class Engine final : public CycleEngine, private SourceHost {
     call_.ready = ready;
     call_.now = now;
     call_.box_called = call_.avoidance_called = false;
+    call_.low_pool = false;
     return PortUnits<Tester>(call_, avoidance_in_use_);
   }
 
@@ -457,12 +459,16 @@ class Engine final : public CycleEngine, private SourceHost {
     CoreCounters& cc = core.core->counters;
     ++cc.node_fetches;
     cc.memory_wait_cycles += ready - asked;
+    // Both children low-precision (bvh.low_precision) and a pool for them (hw.box_low).
+    const bool low = low_nodes_ && low_nodes_[s.pending.index];
     UnitSchedule box;
     if constexpr (kBuiltinUnits) {
-      box = box_op(core, ready, now);
+      box = low ? core.box_low->schedule_inline(ready, now) : box_op(core, ready, now);
       s.pending = s.stepper.node_step();
     } else {
-      s.pending = s.stepper.node_step(port_units(s, id, ready, now));
+      PortUnits<Tester> units = port_units(s, id, ready, now);
+      call_.low_pool = low;
+      s.pending = s.stepper.node_step(units);
       box = call_.box;
     }
     if (__builtin_expect(tracing_, 0)) {
@@ -612,6 +618,9 @@ class Engine final : public CycleEngine, private SourceHost {
   IdealMemory* ideal_;
   bool avoidance_in_use_;
   const bool per_triangle_ = cfg_.per_triangle_fetch;  // hw.triangle_fetch "triangle"
+  /// Per node: tested by the low-precision pool (null: no marked nodes or no pool).
+  const uint8_t* low_nodes_ =
+      cfg_.box_low.count > 0 && !bvh_.low_precision_node.empty() ? bvh_.low_precision_node.data() : nullptr;
   // Per kind (0: a leaf's triangles, 1: a node), the modelled address of record `i`: base + stride * i.
   const uint64_t model_base_[2] = {map_.triangle(0), map_.node(0)};
   const uint64_t model_stride_[2] = {BvhAddressMap::kTriangleBytes, BvhAddressMap::kNodeBytes};

@@ -79,6 +79,7 @@ struct CoreBinding {
   RayTestCore* core;
   BoxUnit* box_builtin;
   BoxUnitIf* box;
+  BoxUnit* box_low;  ///< the low-precision box pool (always built-in), or null without one
   TriangleTester* triangle_builtin;
   TriangleTesterIf* triangle;
   AvoidanceUnit* avoidance_builtin;

@@ -189,6 +189,12 @@ void apply_hw_config(const nlohmann::json& j, const std::string& file, HwConfig&
     }
   }
   read_unit(f, "box", cfg.box);
+  if (const auto* v = f.get("box_low")) {  // as a unit, but a count of 0 (none) is allowed
+    Fields fl(*v, file, "hw.box_low");
+    fl.integer("count", cfg.box_low.count, 0, 64);
+    fl.integer("latency", cfg.box_low.latency, 1, 100000);
+    fl.integer("issue_interval", cfg.box_low.issue_interval, 1, 100000);
+  }
   if (const auto* v = f.get("triangle")) {
     // A latency or issue interval given without `derive` fixes the unit's timing
     // (an override of a preset's derivation); with `derive: true` they are
@@ -206,6 +212,7 @@ void apply_hw_config(const nlohmann::json& j, const std::string& file, HwConfig&
   }
   read_unit(f, "avoidance", cfg.avoidance);
   f.boolean("root_box_test", cfg.root_box_test);
+  f.boolean("pop_culling", cfg.pop_culling);
   f.name("triangle_fetch", [&](const std::string& s) {
     if (s != "leaf" && s != "triangle") return false;
     cfg.per_triangle_fetch = s == "triangle";
@@ -310,9 +317,11 @@ nlohmann::json hw_config_json(const HwConfig& c) {
             {"bundle_max", c.source.bundle_max}}},
           {"shader", shader_config_json(c.shader)},
           {"box", unit(c.box)},
+          {"box_low", unit(c.box_low)},
           {"triangle", triangle_json(c)},
           {"avoidance", unit(c.avoidance)},
           {"root_box_test", c.root_box_test},
+          {"pop_culling", c.pop_culling},
           {"triangle_fetch", c.per_triangle_fetch ? "triangle" : "leaf"},
           {"triangle_fetch_cycles", c.triangle_fetch_cycles},
           {"controller",

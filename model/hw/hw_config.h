@@ -103,6 +103,11 @@ struct HwConfig {
   SourceConfig source;
   ShaderConfig shader;
   UnitConfig box{1, 8, 1};
+  /// The low-precision box pool (count 0: none, the default): with nodes of
+  /// two precisions (bvh.low_precision), a node whose two children are both
+  /// low-precision is tested here, any other by `box`; without marked nodes
+  /// it stays idle.
+  UnitConfig box_low{0, 8, 1};
   UnitConfig triangle{1, 20, 1};
   /// With triangle_timing.derive, triangle.latency and issue_interval follow the
   /// tester of the run (for_tester); the values above hold until then.
@@ -112,6 +117,9 @@ struct HwConfig {
   /// Each ray's search starts with a test of the root's box, latched with the
   /// ray (true); false: with the root node's fetch, as rtcore-systemc's does.
   bool root_box_test = true;
+  /// A popped stack entry beyond the closest hit so far is skipped (true), or
+  /// visited all the same (false, as rtcore-systemc's traversal does).
+  bool pop_culling = true;
   /// How a leaf's triangles are read: one read of the whole leaf, then its
   /// tests (false, the default); or each triangle read on its own, its test
   /// issued when it arrives and the next triangle's read

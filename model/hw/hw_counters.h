@@ -69,6 +69,7 @@ struct HwCounters {
   uint64_t cycles = 0;            ///< cycle at which the last ray finished
   uint64_t rays = 0;              ///< rays finished
   UnitCounters box, triangle, avoidance;
+  UnitCounters box_low;     ///< the low-precision box pool (none: 0)
   UnitCounters controller;  ///< the cores' traversal controllers (none: 0)
   std::array<uint64_t, kRayKindCount> avoidance_ops_by_kind{};  ///< suspects sent to the avoidance unit
   uint64_t node_fetches = 0, leaf_fetches = 0, refill_reads = 0;

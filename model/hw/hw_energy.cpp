@@ -36,7 +36,8 @@ HwArea hw_area(const TechFile& t, const HwConfig& given, const ReplayOptions& op
   const MethodOps mo = method_ops(opt.method);
   HwArea a;
   a.cores = cfg.cores;
-  a.box_units = cfg.cores * cfg.box.count;
+  // A low-precision pool's units are priced as full-precision ones (an upper bound).
+  a.box_units = cfg.cores * (cfg.box.count + cfg.box_low.count);
   a.triangle_testers = cfg.cores * cfg.triangle.count;
   a.avoidance_units = opt.method.validity_bit && mo.suspect.total() > 0 ? cfg.cores * cfg.avoidance.count : 0;
   a.emission_lanes = mo.emission.total() > 0 ? cfg.source.rays_per_cycle : 0;

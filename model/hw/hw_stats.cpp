@@ -52,6 +52,7 @@ nlohmann::json hw_stats_json(const HwReport& r) {
     const UnitConfig ctrl{cfg.controller.count, cfg.controller.latency, cfg.controller.issue_interval};
     j["units"]["controller"] = unit_json(c.controller, ctrl, cfg, c.cycles, c.rays);
   }
+  if (cfg.box_low.count > 0) j["units"]["box_low"] = unit_json(c.box_low, cfg.box_low, cfg, c.cycles, c.rays);
   j["utilisation"] = {{"box", utilisation_json(c.box, cfg.box, cfg, c.cycles)},
                       {"triangle", utilisation_json(c.triangle, cfg.triangle, cfg, c.cycles)},
                       {"avoidance", utilisation_json(c.avoidance, cfg.avoidance, cfg, c.cycles)},
@@ -64,6 +65,10 @@ nlohmann::json hw_stats_json(const HwReport& r) {
                                 {"avoidance_pipeline_full", c.avoidance.wait_cycles},
                                 {"stack_refill_wait", c.refill_wait_cycles}};
   if (cfg.controller.count > 0) waits["controller_full"] = c.controller.wait_cycles;
+  if (cfg.box_low.count > 0) {
+    j["utilisation"]["box_low"] = utilisation_json(c.box_low, cfg.box_low, cfg, c.cycles);
+    waits["box_low_pipeline_full"] = c.box_low.wait_cycles;
+  }
   nlohmann::json shares;
   for (const auto& [k, v] : waits.items()) shares[k] = per(v.get<double>(), c.slot_cycles);
   j["stalls"] = {{"slot_cycles", waits},
@@ -131,6 +136,10 @@ std::string hw_summary_table(const HwReport& r) {
                    100 * per(c.memory_wait_cycles, c.slot_cycles), 100 * per(c.box.wait_cycles, c.slot_cycles),
                    100 * per(c.triangle.wait_cycles, c.slot_cycles), 100 * per(c.avoidance.wait_cycles, c.slot_cycles),
                    100 * per(c.refill_wait_cycles, c.slot_cycles));
+  if (cfg.box_low.count > 0)
+    s += fmt::format("  low-precision box pool: {} operations, utilisation {}, box full {:.1f}%\n", c.box_low.ops,
+                     utilisation_text(c.box_low, cfg.box_low, cfg, c.cycles),
+                     100 * per(c.box_low.wait_cycles, c.slot_cycles));
   s += fmt::format("  source held a ray for want of a slot: {} cycles   stack spills {}  refills {}\n",
                    c.no_free_slot_cycles, c.spills, c.refill_reads);
   s += fmt::format("  ray latency (cycles)  min {}  mean {:.1f}  max {}\n", c.latency_min, per(c.slot_cycles, c.rays),

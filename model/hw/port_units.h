@@ -42,6 +42,7 @@ struct UnitCall {
   uint64_t ready = 0, now = 0;  ///< the operands' cycle (box, triangle) and the event's
   UnitSchedule box{0, 0}, triangle{0, 0}, avoidance{0, 0};
   bool box_called = false, avoidance_called = false;
+  bool low_pool = false;  ///< the node step's boxes go to the low-precision pool (CoreBinding::box_low)
 };
 
 /// The name of the instance implementing `iface`, or `fallback`.
@@ -161,6 +162,12 @@ class PortUnits {
   BoxAnswer box(const BoxOp& op) {
     const CoreBinding& c = *call_.core;
     call_.box_called = true;
+    if (call_.low_pool) {  // the low-precision pool: always built-in
+      BoxAnswer a = BoxUnit::compute(op);
+      a.schedule = c.box_low->schedule_inline(op.ready, op.now);
+      call_.box = a.schedule;
+      return a;
+    }
     if (c.box_builtin) {
       BoxAnswer a = BoxUnit::compute(op);
       a.schedule = c.box_builtin->schedule_inline(op.ready, op.now);

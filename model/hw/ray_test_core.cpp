@@ -25,12 +25,16 @@ Unit* bind_unit(sc_core::sc_port<If>& port, const AcceleratorUnits::CoreUnitFact
 RayTestCore::RayTestCore(sc_core::sc_module_name name, uint32_t index, const HwConfig& config,
                          const AcceleratorUnits& units, TesterKind tester, const AvoidanceConfig& avoidance_config,
                          bool avoidance_in_use, bool with_l1)
-    : sc_core::sc_module(name), box("box"), triangle("triangle"), avoidance("avoidance"), memory("memory"),
+    : sc_core::sc_module(name), box("box"), box_low("box_low"), triangle("triangle"), avoidance("avoidance"), memory("memory"),
       read_done_target("read_done_target"), index_(index), first_slot_(index * config.slots_per_core),
       slots_(config.slots_per_core), stack_depth_(config.stack_depth) {
   read_done_target.bind(*this);
   builtin_box_ = bind_unit(box, units.box_unit, "box_unit", index, config, "BoxUnitIf", box_unit_, replacements_,
                            [&](const char* n) { return std::make_unique<BoxUnit>(n, config.box); });
+  if (config.box_low.count > 0) {
+    box_unit_low_ = std::make_unique<BoxUnit>("box_unit_low", config.box_low);
+    box_low.bind(*box_unit_low_);
+  }
   builtin_triangle_ = bind_unit(triangle, units.triangle_tester, "triangle_tester", index, config, "TriangleTesterIf",
                                 triangle_tester_, replacements_, [&](const char* n) {
                                   return std::make_unique<TriangleTester>(n, for_tester(config, tester).triangle, tester);

@@ -28,6 +28,8 @@ namespace vbsim::hw {
 class RayTestCore final : public sc_core::sc_module, public ReadDoneIf, public StatProvider {
  public:
   sc_core::sc_port<BoxUnitIf> box;
+  /// The low-precision box pool (hw.box_low), bound when it has units.
+  sc_core::sc_port<BoxUnitIf, 1, sc_core::SC_ZERO_OR_MORE_BOUND> box_low;
   sc_core::sc_port<TriangleTesterIf> triangle;
   sc_core::sc_port<AvoidanceUnitIf> avoidance;
   sc_core::sc_port<MemoryReadIf> memory;
@@ -44,6 +46,7 @@ class RayTestCore final : public sc_core::sc_module, public ReadDoneIf, public S
 
   /// The built-in units bound to the ports, or null where a replacement is bound.
   BoxUnit* builtin_box() const { return builtin_box_; }
+  BoxUnit* box_low_unit() const { return box_unit_low_.get(); }  ///< the low-precision pool, or null
   TriangleTester* builtin_triangle() const { return builtin_triangle_; }
   AvoidanceUnit* builtin_avoidance() const { return builtin_avoidance_; }
   L1Cache* l1() const { return l1_; }  ///< the built-in L1, or null
@@ -69,6 +72,7 @@ class RayTestCore final : public sc_core::sc_module, public ReadDoneIf, public S
   L1Cache* l1_ = nullptr;
   L2ClientIf* l2_client_ = nullptr;
   std::unique_ptr<BoxUnit> box_unit_;
+  std::unique_ptr<BoxUnit> box_unit_low_;
   std::unique_ptr<TriangleTester> triangle_tester_;
   std::unique_ptr<AvoidanceUnit> avoidance_unit_;
   std::unique_ptr<L1Cache> l1_cache_;

@@ -10,6 +10,7 @@
 
 #include "io/json_document.h"
 #include "replay/config_fields.h"
+#include "scene/bvh_precision.h"
 
 namespace vbsim {
 
@@ -61,6 +62,21 @@ void apply_replay_config(const nlohmann::json& j, const std::string& file, Repla
            fmt::format("must be in (0, {}], got {}", kMaxBvhTraversalCost, opt.bvh.traversal_cost));
     if (opt.bvh.max_leaf_size < 1 || opt.bvh.max_leaf_size > kMaxBvhLeafSize)
       fail(file, "bvh.max_leaf_size", fmt::format("must be 1 to {}, got {}", kMaxBvhLeafSize, opt.bvh.max_leaf_size));
+    if (const auto* lp = fb.get("low_precision")) {  // present: nodes of two precisions (scene/bvh_precision.h)
+      Fields fl(*lp, file, "bvh.low_precision");
+      BvhPrecisionMarking& mark = opt.bvh.low_precision;
+      mark.enabled = true;
+      fl.integer("mantissa_bits", mark.mantissa_bits);
+      fl.number("t_trav_high", mark.t_trav_high);
+      fl.number("t_trav_low", mark.t_trav_low);
+      try {
+        check_bvh_precision(mark);
+      } catch (const std::invalid_argument& e) {
+        const std::string what = e.what();  // "bvh.low_precision.FIELD must be ..."
+        const size_t space = what.find(' ');
+        fail(file, what.substr(0, space), what.substr(space + 1));
+      }
+    }
   }
   f.number("tmin_eps", m.tmin_eps);
   f.number("offset_normal_eps", m.offset_normal_eps);
@@ -70,7 +86,9 @@ void apply_replay_config(const nlohmann::json& j, const std::string& file, Repla
   f.get("hw");  // the cycle-level model's settings: read by hw/hw_config.h in cycle mode
   // What a stats file's config records about the run's inputs: accepted so the
   // block can be fed back, and ignored (the command line names the inputs).
-  for (const char* descriptive : {"trace", "scene", "triangles", "size", "light"}) f.get(descriptive);
+  for (const char* descriptive :
+       {"trace", "scene", "triangles", "size", "light", "integrator", "children_from", "samples", "bounces", "seed"})
+    f.get(descriptive);
   if (const auto* a = f.get("adaptive")) {
     Fields fa(*a, file, "adaptive");
     fa.number("origin", m.adaptive.origin);

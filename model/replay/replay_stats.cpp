@@ -166,6 +166,23 @@ std::string ReplayStats::summary() const {
   return s;
 }
 
+namespace {
+
+/// The BVH build options as a config's `bvh` object (read back by replay_config.cpp).
+nlohmann::json bvh_options_json(const BvhBuildOptions& b) {
+  nlohmann::json j = {{"builder", bvh_builder_name(b.builder)},
+                      {"quality", bvh_quality_name(b.quality)},
+                      {"max_leaf_size", b.max_leaf_size},
+                      {"traversal_cost", b.traversal_cost}};
+  if (b.low_precision.enabled)
+    j["low_precision"] = {{"mantissa_bits", b.low_precision.mantissa_bits},
+                          {"t_trav_high", b.low_precision.t_trav_high},
+                          {"t_trav_low", b.low_precision.t_trav_low}};
+  return j;
+}
+
+}  // namespace
+
 nlohmann::json replay_config_json(const ReplayOptions& opt) {
   const SelfIntersectionMethod& m = opt.method;
   const AvoidanceConfig& a = m.avoidance;
@@ -175,11 +192,7 @@ nlohmann::json replay_config_json(const ReplayOptions& opt) {
           {"bits_per_ray", m.bits_per_ray()},
           {"cost_ops", method_cost_json(m)},
           {"shadow_any_hit", opt.any_hit_for_shadow},
-          {"bvh",
-           {{"builder", bvh_builder_name(opt.bvh.builder)},
-            {"quality", bvh_quality_name(opt.bvh.quality)},
-            {"max_leaf_size", opt.bvh.max_leaf_size},
-            {"traversal_cost", opt.bvh.traversal_cost}}},
+          {"bvh", bvh_options_json(opt.bvh)},
           {"tmin_eps", m.tmin_eps},
           {"offset_normal_eps", m.offset_normal_eps},
           {"offset_direction_eps", m.offset_direction_eps},

@@ -102,6 +102,18 @@ bool parse_bvh_builder(const std::string& s, BvhBuilder& out);
 constexpr int kMaxBvhLeafSize = 32;
 constexpr float kMaxBvhTraversalCost = 1000.0f;
 
+/// Two node precisions, as rtcore-systemc's tree has (scene/bvh_precision.h).
+struct BvhPrecisionMarking {
+  bool enabled = false;
+  int mantissa_bits = 7;      ///< fraction bits a low-precision bound keeps (0..22; exponent: float32's)
+  double t_trav_high = 0.5;   ///< SAH cost of a full-precision node test (a triangle test: 1)
+  double t_trav_low = 0.47;   ///< SAH cost of a low-precision node test
+  bool operator==(const BvhPrecisionMarking& o) const {
+    return enabled == o.enabled && (!enabled || (mantissa_bits == o.mantissa_bits &&
+                                                 t_trav_high == o.t_trav_high && t_trav_low == o.t_trav_low));
+  }
+};
+
 struct BvhBuildOptions {
   int max_leaf_size = 4;  ///< triangles per leaf at most (1..kMaxBvhLeafSize)
   BvhQuality quality = BvhQuality::High;  ///< Embree's builder only
@@ -110,9 +122,11 @@ struct BvhBuildOptions {
   /// traversalCost), in (0, kMaxBvhTraversalCost]: larger gives fewer, larger
   /// leaves (up to max_leaf_size).
   float traversal_cost = 1.0f;
+  /// Nodes of two precisions (off by default: every box in float32).
+  BvhPrecisionMarking low_precision;
   bool operator==(const BvhBuildOptions& o) const {
     return max_leaf_size == o.max_leaf_size && quality == o.quality && builder == o.builder &&
-           traversal_cost == o.traversal_cost;
+           traversal_cost == o.traversal_cost && low_precision == o.low_precision;
   }
 };
 
@@ -125,10 +139,15 @@ struct Bvh {
   /// along that path plus one (a root leaf: 1; an empty scene: 0). Unchanged
   /// from the layout with one record per node, leaves included.
   int depth = 0;
+  /// With nodes of two precisions (BvhBuildOptions::low_precision): per node,
+  /// 1 when both its children's boxes are low-precision (rounded outward in
+  /// the record), so the low-precision box pool tests it; empty otherwise.
+  std::vector<uint8_t> low_precision_node;
 };
 
 /// Builds the BVH of `scene` with the options' builder: rtcBuildBVH (quality,
-/// leaf size, traversal cost) or the sweep SAH (leaf size, traversal cost);
+/// leaf size, traversal cost) or the sweep SAH (leaf size, traversal cost),
+/// then marks its nodes' precisions when the options ask (bvh_precision.h);
 /// std::invalid_argument when an option is out of range. Every
 /// triangle appears in exactly one leaf; an empty scene gives no nodes and no triangles.
 Bvh build_bvh(const Scene& scene, const BvhBuildOptions& options = {});

@@ -27,6 +27,7 @@
 
 #include "scene/bvh.h"
 #include "scene/bvh_build_common.h"
+#include "scene/bvh_precision.h"
 #include "scene/embree_device.h"
 #include "scene/sweep_sah_builder.h"
 
@@ -192,8 +193,24 @@ bool parse_bvh_builder(const std::string& s, BvhBuilder& out) {
   return false;
 }
 
+namespace {
+
+/// The tree of the options' builder, every box in float32.
+Bvh build_tree(const Scene& scene, const BvhBuildOptions& options);
+
+}  // namespace
+
 Bvh build_bvh(const Scene& scene, const BvhBuildOptions& options) {
   check_options(options);
+  if (options.low_precision.enabled) check_bvh_precision(options.low_precision);
+  Bvh bvh = build_tree(scene, options);
+  if (options.low_precision.enabled) mark_low_precision(bvh, options.low_precision);
+  return bvh;
+}
+
+namespace {
+
+Bvh build_tree(const Scene& scene, const BvhBuildOptions& options) {
   if (options.builder == BvhBuilder::SweepSah) return build_sweep_sah_bvh(scene, options);
 
   Bvh bvh;
@@ -254,5 +271,7 @@ Bvh build_bvh(const Scene& scene, const BvhBuildOptions& options) {
                                  scene.triangles.size()));
   return bvh;
 }
+
+}  // namespace
 
 }  // namespace vbsim

@@ -24,25 +24,33 @@ class RtcoreConfigTest(unittest.TestCase):
     def test_defaults_are_rtcores(self):
         r = run()
         self.assertEqual(r.returncode, 0, r.stderr)
-        hw = json.loads(r.stdout)["hw"]
+        out = json.loads(r.stdout)
+        hw = out["hw"]
         self.assertEqual(hw["preset"], "rtcore")
         # 512 entries of 40 + 64 + 36 bytes = 71,680 bytes = 1,120 lines of 64.
         self.assertEqual(hw["memory"]["l1"], {"size_bytes": 71680, "ways": "full"})
-        self.assertEqual(hw["box"], {"count": 4, "latency": 20, "issue_interval": 20})
+        self.assertEqual(hw["box"], {"count": 4, "latency": 20, "issue_interval": 20})  # NUM_HP
+        self.assertEqual(hw["box_low"], {"count": 4, "latency": 20, "issue_interval": 20})  # NUM_LP
         self.assertEqual(hw["triangle"], {"count": 1, "latency": 32, "issue_interval": 32})
-        self.assertIn("T_TRAV_HIGH", r.stderr)  # named as not modelled
+        self.assertEqual(out["bvh"], {"low_precision": {"mantissa_bits": 7, "t_trav_high": 0.5, "t_trav_low": 0.47}})
+        self.assertIn("not modelled", r.stderr)  # what the mapping cannot express is named
 
     def test_arguments_in_tb_tops_order(self):
         r = run(16, 32, 8, 0.5, 0.47, 2, 2, 3)
         self.assertEqual(r.returncode, 0, r.stderr)
-        hw = json.loads(r.stdout)["hw"]
+        out = json.loads(r.stdout)
+        hw = out["hw"]
         # 16 x 40 + 32 x 64 + 8 x 36 = 2,976 bytes: 47 lines (2,976 / 64 = 46.5, rounded up).
         self.assertEqual(hw["memory"]["l1"]["size_bytes"], 47 * 64)
         self.assertEqual(hw["box"]["count"], 2)
+        self.assertEqual(hw["box_low"]["count"], 2)
         self.assertEqual(hw["triangle"]["count"], 3)
-        self.assertNotIn("NUM_HP", r.stderr)  # equal pools: nothing lost
-        r = run(512, 512, 512, 0.5, 0.47, 4, 8)
-        self.assertIn("NUM_HP 8", r.stderr)
+        r = run(512, 512, 512, 0.6, 0.3, 4, 8)
+        out = json.loads(r.stdout)
+        self.assertEqual(out["hw"]["box"]["count"], 8)  # NUM_HP
+        self.assertEqual(out["hw"]["box_low"]["count"], 4)  # NUM_LP
+        self.assertEqual(out["bvh"]["low_precision"]["t_trav_high"], 0.6)
+        self.assertEqual(out["bvh"]["low_precision"]["t_trav_low"], 0.3)
 
     def test_bad_arguments(self):
         for args, field in [(["x"], "LP_L1C_ENTRIES"), ([512, 512, 512, "high"], "T_TRAV_HIGH"),
@@ -67,7 +75,18 @@ class RtcoreConfigTest(unittest.TestCase):
             self.assertEqual(hw["memory"]["l1"]["merge_misses"], False)
             self.assertEqual(hw["memory"]["dram_latency_per_byte"], 5)
             self.assertEqual(hw["triangle"]["count"], 2)
+            self.assertEqual(hw["box_low"]["count"], 1)
             self.assertEqual(hw["cores"], 1)
+            # A replay takes it too, with its node marking.
+            stats = os.path.join(tmp, "stats.json")
+            trace = os.path.join(ROOT, "traces", "bunny", "paths.jsonl")
+            r = subprocess.run([VBSIM, "replay", trace, "--mode", "cycle", "--config", cfg, "--stats", stats, "-q"],
+                               capture_output=True, text=True)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            with open(stats) as f:
+                s = json.load(f)
+            self.assertEqual(s["config"]["bvh"]["low_precision"]["t_trav_low"], 0.47)
+            self.assertGreater(s["hw"]["units"]["box_low"]["ops"], 0)
 
 
 if __name__ == "__main__":

@@ -1,7 +1,8 @@
 // Hits do not depend on the BVH (docs/hw-model.md, "The BVH"): the bundled
 // trace and tie-heavy scenarios (spawn points ulps from shared edges, coplanar
 // duplicates) replayed over trees of Embree's three qualities and of the sweep-SAH
-// builder, leaves of 1 to 32 triangles and SAH traversal costs 1 to 16,
+// builder, leaves of 1 to 32 triangles and SAH traversal costs 1 to 16, nodes of
+// two precisions (on the cycle-level model with two box pools),
 // functionally and on the cycle-level model, give every closest-hit ray the same triangle, distance, barycentrics and
 // front/back bit, and every shadow ray (any hit) the same occlusion and verdict.
 #include <catch2/catch.hpp>
@@ -24,10 +25,18 @@ struct Build {
   const char* quality;  ///< Embree's quality, or "sweep-sah" for that builder
   int leaf;
   int cost;
-  std::string options() const {
+  /// Nodes of two precisions (bvh.low_precision, rtcore-systemc's defaults),
+  /// on the cycle-level model the rtcore preset (its two box pools, no pop
+  /// culling, a leaf's triangles read one by one).
+  bool marked = false;
+  std::string options(const fs::path& dir, bool cycle) const {
     const std::string builder = std::string(quality) == "sweep-sah" ? " --bvh-builder sweep-sah"
                                                                      : std::string(" --bvh-quality ") + quality;
-    return builder + " --bvh-leaf-size " + std::to_string(leaf) + " --bvh-traversal-cost " + std::to_string(cost);
+    std::string o = builder + " --bvh-leaf-size " + std::to_string(leaf) + " --bvh-traversal-cost " + std::to_string(cost);
+    if (!marked) return o + (cycle ? " --preset small" : "");
+    const fs::path cfg = dir / "marked.json";
+    std::ofstream(cfg) << R"({"bvh": {"low_precision": {"mantissa_bits": 7, "t_trav_high": 0.5, "t_trav_low": 0.47}}})";
+    return o + " --config " + cfg.string() + (cycle ? " --preset rtcore" : "");
   }
 };
 
@@ -64,16 +73,17 @@ nlohmann::json comparable(const nlohmann::json& hit, bool shadow) {
 void check_independent(const fs::path& trace, const fs::path& dir, const std::string& method) {
   const auto kinds = shadow_rays(trace);
   const Build builds[] = {{"high", 4, 1},      {"medium", 4, 1},      {"low", 4, 1},         {"high", 1, 1},
-                          {"high", 16, 8},     {"medium", 32, 16},    {"sweep-sah", 4, 1},   {"sweep-sah", 16, 1}};
+                          {"high", 16, 8},     {"medium", 32, 16},    {"sweep-sah", 4, 1},   {"sweep-sah", 16, 1},
+                          {"sweep-sah", 16, 1, true}, {"high", 4, 1, true}};
   std::vector<nlohmann::json> reference;
   int n = 0;
   for (const Build& b : builds)
     for (const char* mode : {"functional", "cycle"}) {
-      INFO(trace.filename().string() << ", " << method << ", " << mode << b.options());
+      const std::string options = b.options(dir, std::string(mode) == "cycle");
+      INFO(trace.filename().string() << ", " << method << ", " << mode << options);
       const fs::path hits = dir / ("hits" + std::to_string(n++) + ".jsonl");
-      const std::string preset = std::string(mode) == "cycle" ? " --preset small" : "";
-      const auto r = run_vbsim("replay " + trace.string() + " -m " + method + " --mode " + mode + preset +
-                               " -q --hits " + hits.string() + b.options());
+      const auto r = run_vbsim("replay " + trace.string() + " -m " + method + " --mode " + mode + " -q --hits " +
+                               hits.string() + options);
       INFO(r.output);
       REQUIRE(r.exit_code == 0);
       std::vector<nlohmann::json> got;

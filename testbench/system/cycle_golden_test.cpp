@@ -76,6 +76,8 @@ void strip_unpinned(nlohmann::json& j) {
       hw.erase("shader");
       hw.erase("controller");
       hw.erase("root_box_test");
+      hw.erase("pop_culling");
+      hw.erase("box_low");
       hw.erase("triangle_fetch");
       hw.erase("triangle_fetch_cycles");
       for (const char* f : {"warmup_rays", "warmup_cycles", "interval_cycles"}) hw["sim"].erase(f);

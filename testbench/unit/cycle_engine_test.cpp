@@ -317,3 +317,52 @@ TEST_CASE("per-triangle fetch gives the bundled trace's hits, in more cycles", "
   CHECK(each.result.counters.controller.ops == leaf.result.counters.controller.ops);
   CHECK(each.result.counters.cycles > leaf.result.counters.cycles);
 }
+
+TEST_CASE("without pop culling a popped subtree beyond the hit is visited all the same, by hand", "[cycle][pop-culling]") {
+  const ThreeFloors f;
+  const uint32_t M = 3, Lb = 5, Lt = 11, La = 7;
+  ReplayOptions opt;
+  std::string err;
+  REQUIRE(parse_method("validity-bit", opt.method, err));
+  // Ray A of the first test: root box, node 0, node 1, leaf [prim 0], a hit
+  // at t = 1. Leaves [prim 1] and [prim 2] were pushed beyond it: culled when
+  // popped; without culling each is fetched and its triangle tested (a hit
+  // farther than t = 1, not taken).
+  HwConfig cfg = one_slot(M, Lb, Lt, La);
+  const Run culled = run_rays({down_from(1, 1.0f)}, f.scene, f.bvh, opt, cfg);
+  cfg.pop_culling = false;
+  const Run visited = run_rays({down_from(1, 1.0f)}, f.scene, f.bvh, opt, cfg);
+  REQUIRE(culled.rays.at(1).prim == 0);
+  CHECK(visited.rays.at(1).prim == 0);
+  CHECK(culled.rays.at(1).cycle == 1 + Lb + 2 * (M + Lb) + (M + Lt));
+  CHECK(visited.rays.at(1).cycle == culled.rays.at(1).cycle + 2 * (M + Lt));
+  CHECK(visited.result.counters.triangle.ops == culled.result.counters.triangle.ops + 2);
+  CHECK(visited.result.counters.leaf_fetches == culled.result.counters.leaf_fetches + 2);
+}
+
+TEST_CASE("a node whose children are both low-precision goes to the low-precision box pool, by hand",
+          "[cycle][box-low]") {
+  ThreeFloors f;
+  const uint32_t M = 3, Lb = 5, Lt = 11, La = 7, Llow = 2;
+  ReplayOptions opt;
+  std::string err;
+  REQUIRE(parse_method("validity-bit", opt.method, err));
+  HwConfig cfg = one_slot(M, Lb, Lt, La);
+  cfg.box_low = {1, Llow, 1};
+  // Ray A of the first test: root box, node 0, node 1, leaf [prim 0]. Node 0
+  // marked for the low-precision pool: its test takes Llow instead of Lb.
+  f.bvh.low_precision_node.assign(f.bvh.nodes.size(), 0);
+  f.bvh.low_precision_node[0] = 1;
+  const Run run = run_rays({down_from(1, 1.0f)}, f.scene, f.bvh, opt, cfg);
+  REQUIRE(run.rays.at(1).prim == 0);
+  CHECK(run.rays.at(1).cycle == 1 + Lb + (M + Llow) + (M + Lb) + (M + Lt));
+  CHECK(run.result.counters.box_low.ops == 1);
+  CHECK(run.result.counters.box.ops == 2);  // the root box and node 1
+  CHECK(run.result.hw["units"]["box_low"]["ops"] == 1);
+  // Without a pool the marks change nothing: node 0 goes to the box unit.
+  cfg.box_low.count = 0;
+  const Run no_pool = run_rays({down_from(1, 1.0f)}, f.scene, f.bvh, opt, cfg);
+  CHECK(no_pool.rays.at(1).cycle == 1 + Lb + 2 * (M + Lb) + (M + Lt));
+  CHECK(no_pool.result.counters.box.ops == 3);
+  CHECK_FALSE(no_pool.result.hw["units"].contains("box_low"));
+}

@@ -65,6 +65,10 @@ TEST_CASE("bad hw values are errors naming the field", "[hwconfig]") {
       {R"({"address_base": 100})", "field 'hw.address_base'"},
       {R"({"box": {"latency": "x"}})", "field 'hw.box.latency'"},
       {R"({"shader": {"latency_by_kind": {"bounce": 5}}})", "field 'hw.shader.latency_by_kind.bounce'"},
+      {R"({"box_low": {"count": -1}})", "field 'hw.box_low.count'"},
+      {R"({"box_low": {"latency": 0}})", "field 'hw.box_low.latency'"},
+      {R"({"triangle_fetch": "each"})", "field 'hw.triangle_fetch'"},
+      {R"({"pop_culling": 1})", "field 'hw.pop_culling'"},
       {R"({"shader": {"latency_by_kind": {"diffuse": -1}}})", "field 'hw.shader.latency_by_kind.diffuse'"},
       {R"({"shader": {"latency_by_kind": [1]}})", "field 'hw.shader.latency_by_kind'"},
       {R"({"triangle": {"count": 0}})", "field 'hw.triangle.count'"},
@@ -138,9 +142,21 @@ TEST_CASE("a replay config's bvh build options are read, checked and echoed", "[
   CHECK(back.bvh.builder == BvhBuilder::SweepSah);
   CHECK(replay_config_json(back)["bvh"]["builder"] == "sweep-sah");
   CHECK_FALSE(back.bvh == opt.bvh);
+  // Nodes of two precisions: present means on; echoed, and read back.
+  ReplayOptions marked;
+  apply_replay_config(nlohmann::json::parse(R"({"bvh": {"low_precision": {"t_trav_low": 0.4}}})"), "f", marked);
+  CHECK(marked.bvh.low_precision == BvhPrecisionMarking{true, 7, 0.5, 0.4});
+  const nlohmann::json lp = replay_config_json(marked)["bvh"]["low_precision"];
+  CHECK(lp == nlohmann::json::parse(R"({"mantissa_bits": 7, "t_trav_high": 0.5, "t_trav_low": 0.4})"));
+  ReplayOptions marked_back;
+  apply_replay_config(nlohmann::json{{"bvh", replay_config_json(marked)["bvh"]}}, "f", marked_back);
+  CHECK(marked_back.bvh == marked.bvh);
+  CHECK_FALSE(replay_config_json(opt)["bvh"].contains("low_precision"));
   for (const char* bad : {R"({"bvh": {"quality": "best"}})", R"({"bvh": {"max_leaf_size": 33}})",
                           R"({"bvh": {"traversal_cost": 0}})", R"({"bvh": {"leaves": 2}})",
-                          R"({"bvh": {"builder": "sah"}})"}) {
+                          R"({"bvh": {"builder": "sah"}})", R"({"bvh": {"low_precision": {"mantissa_bits": 23}}})",
+                          R"({"bvh": {"low_precision": {"t_trav_low": -1}}})",
+                          R"({"bvh": {"low_precision": {"bits": 7}}})"}) {
     INFO(bad);
     ReplayOptions o;
     CHECK_THROWS_WITH(apply_replay_config(nlohmann::json::parse(bad), "cfg.json", o),
