@@ -9,6 +9,7 @@
 
 #include "bench/functional_bench.h"
 #include "hw/cycle_replay.h"
+#include "hw/examples/reduced_precision_units.h"
 #include "replay/replay_run.h"
 #include "trace/trace_file.h"
 #include "three_floors.h"
@@ -359,6 +360,17 @@ TEST_CASE("a node whose children are both low-precision goes to the low-precisio
   CHECK(run.result.counters.box_low.ops == 1);
   CHECK(run.result.counters.box.ops == 2);  // the root box and node 1
   CHECK(run.result.hw["units"]["box_low"]["ops"] == 1);
+  // The same through the units' interfaces (a replaced triangle tester, here
+  // one of full precision): node 0 still goes to the low-precision pool.
+  CycleRunOptions options;
+  options.track_parents = false;
+  options.units.triangle_tester = reduced_precision_triangle_tester(23, TesterKind::ThreeHalfPlane);
+  uint64_t finish = 0;
+  const CycleRunResult ported = run_cycle_replay(
+      feed_of({down_from(1, 1.0f)}), f.scene, f.bvh, opt, cfg,
+      [&](const TraceRay&, const RayOutcome&, uint64_t cycle, uint64_t) { finish = cycle; }, options);
+  CHECK(finish == run.rays.at(1).cycle);
+  CHECK(ported.counters.box_low.ops == 1);
   // Without a pool the marks change nothing: node 0 goes to the box unit.
   cfg.box_low.count = 0;
   const Run no_pool = run_rays({down_from(1, 1.0f)}, f.scene, f.bvh, opt, cfg);
