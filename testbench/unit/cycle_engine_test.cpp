@@ -95,12 +95,9 @@ TEST_CASE("cycle count of each ray equals the hand-computed sum on a three-node 
 
 TEST_CASE("a root leaf's triangle tests issue at the pipeline's issue interval", "[cycle]") {
   // No nodes: the root is one leaf of three floors; the ray meets all three.
-  const Scene scene = make_scene({floor_at(0), floor_at(-1), floor_at(-2)});
-  Bvh bvh;
-  for (int i = 0; i < 3; ++i) bvh.tris.push_back({scene.triangles[i], static_cast<uint32_t>(i)});
-  bvh.root = {0, 3};
-  bvh.root_bounds = box_of(-2, 0);
-  bvh.depth = 1;
+  const ThreeFloorsLeaf leaf;
+  const Scene& scene = leaf.scene;
+  const Bvh& bvh = leaf.bvh;
   const uint32_t M = 4, Lb = 2, Lt = 9, interval = 3;
   HwConfig cfg = one_slot(M, Lb, Lt, 1);
   cfg.triangle.issue_interval = interval;
@@ -255,12 +252,9 @@ TEST_CASE("without the root box test a ray starts with the root node's fetch: th
 TEST_CASE("per-triangle fetch: each triangle read after the one before has its result, by hand",
           "[cycle][triangle-fetch]") {
   // The root leaf of three floors, as above, its triangles read one by one.
-  const Scene scene = make_scene({floor_at(0), floor_at(-1), floor_at(-2)});
-  Bvh bvh;
-  for (int i = 0; i < 3; ++i) bvh.tris.push_back({scene.triangles[i], static_cast<uint32_t>(i)});
-  bvh.root = {0, 3};
-  bvh.root_bounds = box_of(-2, 0);
-  bvh.depth = 1;
+  const ThreeFloorsLeaf leaf;
+  const Scene& scene = leaf.scene;
+  const Bvh& bvh = leaf.bvh;
   const uint32_t M = 4, Lb = 2, Lt = 9, F = 3;
   HwConfig cfg = one_slot(M, Lb, Lt, 1);
   cfg.triangle.issue_interval = 3;

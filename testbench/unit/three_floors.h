@@ -58,6 +58,18 @@ struct ThreeFloors {
   }
 };
 
+/// The same three floors as one root leaf (no nodes).
+struct ThreeFloorsLeaf {
+  Scene scene = make_scene({floor_at(0), floor_at(-1), floor_at(-2)});
+  Bvh bvh;
+  ThreeFloorsLeaf() {
+    for (uint32_t i = 0; i < 3; ++i) bvh.tris.push_back({scene.triangles[i], i});
+    bvh.root = {0, 3};
+    bvh.root_bounds = box_of(-2, 0);
+    bvh.depth = 1;
+  }
+};
+
 inline TraceRay down_from(int64_t id, float z) {
   TraceRay r;
   r.id = id;
