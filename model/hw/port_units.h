@@ -162,15 +162,10 @@ class PortUnits {
   BoxAnswer box(const BoxOp& op) {
     const CoreBinding& c = *call_.core;
     call_.box_called = true;
-    if (call_.low_pool) {  // the low-precision pool: always built-in
+    // The low-precision pool is always built-in; the box unit may be a replacement.
+    if (BoxUnit* builtin = call_.low_pool ? c.box_low : c.box_builtin) {
       BoxAnswer a = BoxUnit::compute(op);
-      a.schedule = c.box_low->schedule_inline(op.ready, op.now);
-      call_.box = a.schedule;
-      return a;
-    }
-    if (c.box_builtin) {
-      BoxAnswer a = BoxUnit::compute(op);
-      a.schedule = c.box_builtin->schedule_inline(op.ready, op.now);
+      a.schedule = builtin->schedule_inline(op.ready, op.now);
       call_.box = a.schedule;
       return a;
     }

@@ -124,10 +124,11 @@ uint64_t RaySource::emission_cycles(const TraceRay& tr) {
 }
 
 void RaySource::set_feed(RayFeed feed) {
-  if (!feed) return feed_ = nullptr, void();
-  feed_ = [trace = std::move(feed)](TraceRay& tr, uint64_t) {
-    return trace(tr) ? ShaderAnswer::Ray : ShaderAnswer::Finished;
-  };
+  feed_ = nullptr;  // no feed: the trace has ended
+  if (feed)
+    feed_ = [trace = std::move(feed)](TraceRay& tr, uint64_t) {
+      return trace(tr) ? ShaderAnswer::Ray : ShaderAnswer::Finished;
+    };
 }
 
 void RaySource::start(SourceHost& host, uint64_t at) {
@@ -176,7 +177,6 @@ void RaySource::enter(uint64_t pos, uint64_t now) {
   ++counters_.rays;
   note_position(tr.id, pos);  // the ray leaving the history goes first
   finish_at(pos) = Finish{kUnfinished, tr.id, kNone, tr.kind};
-  e.kind = tr.kind;
   if (config_.dependencies) {
     if (!unresolved_.empty()) {
       const auto child = unresolved_.find(tr.id);
@@ -326,7 +326,7 @@ void RaySource::on_finish(uint64_t index, uint64_t at) {
   f.cycle = at;
   if (e.first_child != kNone) {  // its waiting children: one group, its event at the first child's place
     f.group = e.first_child;
-    host_->schedule_source_event(lanes_count_ + f.group, at + shader_.latency_for(e.kind));
+    host_->schedule_source_event(lanes_count_ + f.group, at + shader_.latency_for(f.kind));
     e.first_child = kNone;
   }
   const uint64_t old_base = base_;

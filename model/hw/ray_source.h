@@ -123,7 +123,6 @@ class RaySource final : public sc_core::sc_module, public RaySourceIf, public St
     uint32_t first_child = kNone, next_sibling = kNone;
     uint32_t staged = kNone;  ///< its record in staged_ until dispatched
     State state = State::Finished;
-    RayKind kind = RayKind::Primary;  ///< its kind: the shading latency of its children
   };
   /// Where a child's parent is, as far as the source knows.
   enum class ParentAt : uint8_t { Found, NotBefore, TooFar };

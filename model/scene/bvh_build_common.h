@@ -1,7 +1,8 @@
 // What the two BVH builders (bvh_builder.cpp: Embree's rtcBuildBVH;
 // sweep_sah_builder.cpp: vbsim's full-sweep SAH) share: the options' checks,
-// a triangle's box, box areas and the order of an interior node's children
-// (bvh.h). Internal to model/scene.
+// a triangle's box, box areas (also the precision marking's and the tree
+// statistics') and the order of an interior node's children (bvh.h).
+// Internal to model/scene.
 #pragma once
 #include <cstddef>
 

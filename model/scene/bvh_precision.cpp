@@ -7,15 +7,13 @@
 #include <fmt/format.h>
 
 #include "datapath/reduced_precision.h"
+#include "scene/bvh_build_common.h"
 
 namespace vbsim {
 
 namespace {
 
-double area(const Bounds3f& b) {
-  const double x = double(b.hi.x) - b.lo.x, y = double(b.hi.y) - b.lo.y, z = double(b.hi.z) - b.lo.z;
-  return 2.0 * (x * y + y * z + z * x);
-}
+using bvh_build::surface_area;
 
 /// A / B, or 1 when B has no area (a flat parent: no ratio to speak of).
 double ratio(double a, double b) { return b > 0.0 ? a / b : 1.0; }
@@ -50,7 +48,7 @@ void mark_low_precision(Bvh& bvh, const BvhPrecisionMarking& m) {
       if (!bvh.nodes[i].child(c).is_leaf()) own[bvh.nodes[i].ref[c]] = bvh.nodes[i].child_bounds(c);
   for (size_t k = n; k-- > 0;) {
     const BvhNode& node = bvh.nodes[k];
-    const double parent_area[2] = {area(own[k]), area(round_outward(own[k], bits))};
+    const double parent_area[2] = {surface_area(own[k]), surface_area(round_outward(own[k], bits))};
     for (int p = 0; p < 2; ++p) {
       cost[p][k] = 0.0;
       choice[p][k] = 0;
@@ -59,8 +57,8 @@ void mark_low_precision(Bvh& bvh, const BvhPrecisionMarking& m) {
         const Bounds3f box = node.child_bounds(c);
         const double high_cost = r.is_leaf() ? double(r.count) : cost[0][r.index];
         const double low_cost = r.is_leaf() ? double(r.count) : cost[1][r.index];
-        const double high = m.t_trav_high + ratio(area(box), parent_area[p]) * high_cost;
-        const double low = m.t_trav_low + ratio(area(round_outward(box, bits)), parent_area[p]) * low_cost;
+        const double high = m.t_trav_high + ratio(surface_area(box), parent_area[p]) * high_cost;
+        const double low = m.t_trav_low + ratio(surface_area(round_outward(box, bits)), parent_area[p]) * low_cost;
         if (low <= high) choice[p][k] |= uint8_t(1u << c);
         cost[p][k] += low <= high ? low : high;
       }

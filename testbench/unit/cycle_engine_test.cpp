@@ -30,6 +30,14 @@ struct Run {
   std::map<int64_t, Finished> rays;  ///< by ray id
 };
 
+/// The validity-bit method's options, as the hand-computed cases use it.
+ReplayOptions validity_bit_options() {
+  ReplayOptions opt;
+  std::string err;
+  REQUIRE(parse_method("validity-bit", opt.method, err));
+  return opt;
+}
+
 Run run_rays(const std::vector<TraceRay>& rays, const Scene& scene, const Bvh& bvh, const ReplayOptions& opt,
              const HwConfig& cfg) {
   Run run;
@@ -48,9 +56,7 @@ Run run_rays(const std::vector<TraceRay>& rays, const Scene& scene, const Bvh& b
 TEST_CASE("cycle count of each ray equals the hand-computed sum on a three-node BVH", "[cycle]") {
   const ThreeFloors f;
   const uint32_t M = 3, Lb = 5, Lt = 11, La = 7;
-  ReplayOptions opt;
-  std::string err;
-  REQUIRE(parse_method("validity-bit", opt.method, err));
+  const ReplayOptions opt = validity_bit_options();
   // Ray A, a camera ray from z = 1: root box, node 0, node 1, leaf [prim 0]:
   // a hit at t = 1, front face; sign 0, so no suspect. Leaves [prim 1] and
   // [prim 2] were pushed but are farther than the hit: popped and skipped.
@@ -294,9 +300,7 @@ TEST_CASE("per-triangle fetch gives the bundled trace's hits, in more cycles", "
   std::vector<TraceRay> rays;
   TraceRay tr;
   while (src->next(tr)) rays.push_back(tr);
-  ReplayOptions opt;
-  std::string err;
-  REQUIRE(parse_method("validity-bit", opt.method, err));
+  const ReplayOptions opt = validity_bit_options();
   HwConfig cfg = load_preset("small", "test");
   cfg.controller.count = 1;  // every step counted
   const Run leaf = run_rays(rays, sb.scene, sb.bvh, opt, cfg);
@@ -316,9 +320,7 @@ TEST_CASE("per-triangle fetch gives the bundled trace's hits, in more cycles", "
 TEST_CASE("without pop culling a popped subtree beyond the hit is visited all the same, by hand", "[cycle][pop-culling]") {
   const ThreeFloors f;
   const uint32_t M = 3, Lb = 5, Lt = 11, La = 7;
-  ReplayOptions opt;
-  std::string err;
-  REQUIRE(parse_method("validity-bit", opt.method, err));
+  const ReplayOptions opt = validity_bit_options();
   // Ray A of the first test: root box, node 0, node 1, leaf [prim 0], a hit
   // at t = 1. Leaves [prim 1] and [prim 2] were pushed beyond it: culled when
   // popped; without culling each is fetched and its triangle tested (a hit
@@ -339,9 +341,7 @@ TEST_CASE("a node whose children are both low-precision goes to the low-precisio
           "[cycle][box-low]") {
   ThreeFloors f;
   const uint32_t M = 3, Lb = 5, Lt = 11, La = 7, Llow = 2;
-  ReplayOptions opt;
-  std::string err;
-  REQUIRE(parse_method("validity-bit", opt.method, err));
+  const ReplayOptions opt = validity_bit_options();
   HwConfig cfg = one_slot(M, Lb, Lt, La);
   cfg.box_low = {1, Llow, 1};
   // Ray A of the first test: root box, node 0, node 1, leaf [prim 0]. Node 0
