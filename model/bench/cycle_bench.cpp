@@ -15,7 +15,7 @@ CycleBenchResult run_cycle_bench(const Scene& scene, const ReplayOptions& opt, c
   const std::vector<TraceRay> rays = bench_rays(scene, p.rays, p.seed);
   res.rays = p.rays;
   auto t0 = std::chrono::steady_clock::now();
-  const Bvh bvh = build_bvh(scene);
+  const Bvh bvh = build_bvh(scene, opt.bvh);
   res.bvh_build_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   t0 = std::chrono::steady_clock::now();
   const EmbreeReference embree(scene);
@@ -38,6 +38,7 @@ CycleBenchResult run_cycle_bench(const Scene& scene, const ReplayOptions& opt, c
     const hw::CycleRunResult run = hw::run_cycle_replay(feed, scene, bvh, opt, cfg, sink, options);
     best_vbsim = std::min(best_vbsim, run.stats.wall_s);
     const KindStats total = run.stats.total();
+    res.node_fetches_per_ray = static_cast<double>(total.traversal.node_visits) / p.rays;
     res.box_tests_per_ray = static_cast<double>(total.traversal.box_tests) / p.rays;
     res.triangle_tests_per_ray = static_cast<double>(total.traversal.triangle_tests) / p.rays;
     out.cycles = run.counters.cycles;

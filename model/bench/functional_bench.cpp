@@ -24,6 +24,7 @@ nlohmann::json BenchResult::to_json() const {
           {"vbsim_hits", vbsim_hits},
           {"embree_hits", embree_hits},
           {"same_prim", same_prim},
+          {"node_fetches_per_ray", node_fetches_per_ray},
           {"box_tests_per_ray", box_tests_per_ray},
           {"triangle_tests_per_ray", triangle_tests_per_ray},
           {"bvh_build_s", bvh_build_s},
@@ -53,7 +54,7 @@ BenchResult run_functional_bench(const Scene& scene, const ReplayOptions& opt, c
   res.rays = p.rays;
 
   auto t0 = Clock::now();
-  const Bvh bvh = build_bvh(scene);
+  const Bvh bvh = build_bvh(scene, opt.bvh);
   res.bvh_build_s = seconds_since(t0);
   t0 = Clock::now();
   const EmbreeReference embree(scene);
@@ -68,6 +69,7 @@ BenchResult run_functional_bench(const Scene& scene, const ReplayOptions& opt, c
     for (size_t i = 0; i < rays.size(); ++i) ours[i] = replayer.replay(rays[i]).answer;
     best_vbsim = std::min(best_vbsim, seconds_since(t0));
     const KindStats total = replayer.stats().total();
+    res.node_fetches_per_ray = static_cast<double>(total.traversal.node_visits) / p.rays;
     res.box_tests_per_ray = static_cast<double>(total.traversal.box_tests) / p.rays;
     res.triangle_tests_per_ray = static_cast<double>(total.traversal.triangle_tests) / p.rays;
 

@@ -28,7 +28,8 @@ struct BenchResult {
   int64_t vbsim_hits = 0;
   int64_t embree_hits = 0;
   int64_t same_prim = 0;     ///< rays where both returned the same triangle (or both missed)
-  double box_tests_per_ray = 0;       ///< vbsim's traversal work per ray
+  double node_fetches_per_ray = 0;    ///< vbsim's traversal work per ray: node fetches (of the tree's width)
+  double box_tests_per_ray = 0;       ///< ... box tests
   double triangle_tests_per_ray = 0;
   double bvh_build_s = 0;
   double embree_build_s = 0;

@@ -6,7 +6,10 @@
 //                fetched first, as any other (a ray that misses the scene
 //                then costs a node fetch and its two box tests)
 //   node_step    fetch of node A -> both child box tests -> descend into the
-//                nearer child met, push the farther one when both are met
+//                nearer child met, push the farther one when both are met;
+//                over a 4- or 8-wide tree (Bvh::width) every used slot's box
+//                in one operation, the nearest met child descended into and
+//                the others pushed farthest first (wide_closest_hit.h)
 //   triangle_step  one triangle of the current leaf -> tester -> candidate
 //                filter (primid, the avoidance unit); an accepted hit shortens
 //                the interval, a rejected one does not
@@ -35,6 +38,9 @@
 //   unsigned node_boxes(const Ray&, const RayBoxTester& latched, uint32_t node,
 //                       const BvhNode&, float tmax, float& entry0, float& entry1)
 //       bit c set: child c met, entry_c its entry distance (RayBoxTester::hits)
+//   template <int W> unsigned wide_node_boxes(const Ray&, const RayBoxTester& latched,
+//                       uint32_t node, const WideBvhNode<W>&, float tmax, float* entry)
+//       the same for every used slot of a wide node (entry[c] for slot c)
 //   bool triangle(const Ray&, const Tester& latched, uint32_t index,
 //                 const BvhTriangle&, float tmax, Hit&)      (the tester contract)
 //   AvoidanceDecision avoidance(const AvoidanceConfig&, const Ray&, uint32_t index,
@@ -81,6 +87,11 @@ struct BuiltinUnits {
                              float& entry0, float& entry1) {
     return latched.hits(n, tmax, entry0, entry1);
   }
+  template <int W>
+  static unsigned wide_node_boxes(const Ray&, const RayBoxTester& latched, uint32_t, const WideBvhNode<W>& n,
+                                  float tmax, float* entry) {
+    return latched.hits(n, tmax, entry);
+  }
   template <class Tester>
   static bool triangle(const Ray&, const Tester& latched, uint32_t, const BvhTriangle& bt, float tmax, Hit& h) {
     return latched.intersect(bt.tri, tmax, h);
@@ -126,6 +137,7 @@ class BvhStepper {
   /// Both child boxes of the current node (the request was Node).
   template <class Units = BuiltinUnits>
   StepRequest node_step(Units&& units = {}) {
+    if (__builtin_expect(bvh_->width != 2, 0)) return bvh_->width == 4 ? wide_node_step<4>(units) : wide_node_step<8>(units);
     const BvhNode& n = bvh_->nodes[current_.index];
     ++tc_->node_visits;
     tc_->box_tests += 2;
@@ -214,6 +226,30 @@ class BvhStepper {
   StepRequest done() {
     finished_ = true;
     return {StepRequest::Done, 0, 0};
+  }
+
+  /// A node step of the W-wide tree (wide_closest_hit.h's order): every used
+  /// slot's box in one operation, the nearest met child descended into, the
+  /// other met children pushed farthest first (each push spills the oldest
+  /// on-chip entry when the on-chip stack is full).
+  template <int W, class Units>
+  __attribute__((noinline)) StepRequest wide_node_step(Units& units) {  // out of line: the binary step stays lean
+    const WideBvhNode<W>& n = wide_nodes<W>(*bvh_)[current_.index];
+    ++tc_->node_visits;
+    tc_->box_tests += n.children;
+    alignas(16) float entry[W];
+    const unsigned met = units.wide_node_boxes(ray_, *box_, current_.index, n, cull_limit(tmax_), entry) &
+                         ((1u << n.children) - 1u);
+    if (met == 0u) return pop();
+    int order[W];
+    const int k = wide_visit_order(met, entry, order);
+    for (int i = k - 1; i >= 1; --i) {
+      stack_[sp_++] = {n.ref[order[i]], n.count[order[i]], entry[order[i]]};
+      ++tc_->stack_pushes;
+      if (onchip_ == onchip_depth_) ++spills_;
+      else ++onchip_;
+    }
+    return visit(n.child(order[0]));
   }
 
   /// Node: {Node, index, 0} (an interior node's count is 0); leaf: {Leaf, first, count}.

@@ -1,5 +1,6 @@
 // Closest-hit (and any-hit) search over the project's BVH: the BVH stepping of
-// the datapath. One node fetch gives both children's boxes (bvh.h); the nearer
+// the datapath. Over a 4- or 8-wide tree it is wide_closest_hit.h's; over the
+// binary one, one node fetch gives both children's boxes (bvh.h); the nearer
 // child is visited first; a candidate the filter rejects does not shorten the
 // interval. Box tests are the robust slab test of ray_box_tester.h.
 #pragma once
@@ -13,64 +14,11 @@
 #include "datapath/hit.h"
 #include "datapath/ray.h"
 #include "datapath/ray_box_tester.h"
+#include "datapath/search_rules.h"
+#include "datapath/wide_closest_hit.h"
 #include "scene/bvh.h"
 
 namespace vbsim {
-
-/// Work one search did, for cost accounting.
-struct TraversalCounters {
-  uint64_t node_visits = 0;     ///< BvhNode fetches: one per interior node visited
-  uint64_t box_tests = 0;       ///< the root's box, then both child boxes of every node fetched
-  uint64_t triangle_tests = 0;  ///< triangles handed to the tester
-  uint64_t stack_pushes = 0;    ///< farther children pushed (both children met)
-  uint64_t stack_pops = 0;      ///< entries popped (the search ends with the rest unpopped)
-  void add(const TraversalCounters& o) {
-    node_visits += o.node_visits;
-    box_tests += o.box_tests;
-    triangle_tests += o.triangle_tests;
-    stack_pushes += o.stack_pushes;
-    stack_pops += o.stack_pops;
-  }
-};
-
-constexpr int kTraversalStackDepth = 128;
-
-// Ties. A closest-hit search keeps, of candidates at the same distance, the one
-// of the lowest primitive id, so that its hit does not depend on the order the
-// tree presents triangles in (any BVH gives the same hit; docs/hw-model.md,
-// "The BVH"). Once it holds a hit at `tmax`, the tester is asked for an
-// interval a few ulps beyond tmax (candidate_limit: a tester's scaled interval
-// check rounds, and must not drop a candidate whose distance comes out at tmax),
-// and of what it answers only a candidate before tmax, or at tmax with a lower
-// id, is taken (nearer_than_best). Boxes are culled
-// only beyond cull_limit(tmax), tmax widened as the box test widens a box's exit:
-// a box's entry and a triangle on its face are rounded apart by a few ulps, and
-// a box entered just beyond the hit must still be visited for a triangle at the
-// hit's distance to be found whatever box holds it.
-// An any-hit search stops at the first accepted hit, whatever its id.
-
-/// The distance beyond which boxes and stack entries are culled (above).
-inline float cull_limit(float tmax) { return tmax * RayBoxTester::kWiden; }
-
-/// The upper bound to test a triangle against: the ray's tmax, or once the
-/// search holds a hit at tmax, cull_limit(tmax) (so that a tie is seen).
-inline float candidate_limit(const Hit& best, float tmax) { return best.prim >= 0 ? cull_limit(tmax) : tmax; }
-
-/// Whether candidate `h` (inside candidate_limit) is nearer than `best` at
-/// `tmax`: closer, or at the same distance with a lower primitive id.
-inline bool nearer_than_best(const Hit& h, const Hit& best, float tmax) {
-  return h.t < tmax || (h.t == tmax && best.prim >= 0 && h.prim < best.prim);
-}
-
-/// Throws std::runtime_error when `bvh` is deeper than the traversal stack. A
-/// search keeps at most one stack entry per node fetched on its current path,
-/// so at most depth - 1 entries (Bvh::depth counts the leaf's level too), and it
-/// writes one slot past the kept entries at every fetch: depth - 1 must stay
-/// below kTraversalStackDepth.
-inline void check_traversal_depth(const Bvh& bvh) {
-  if (bvh.depth - 1 >= kTraversalStackDepth)
-    throw std::runtime_error("BVH depth exceeds the traversal stack of 128 entries");
-}
 
 /// Closest accepted hit of `ray` (any accepted hit when `any_hit`); miss: prim -1;
 /// at equal distances the lowest primitive id (ties, above).
@@ -80,6 +28,8 @@ inline void check_traversal_depth(const Bvh& bvh) {
 template <class Tester>
 Hit closest_hit(const Bvh& bvh, const Ray& ray, const CandidateFilter& filter,
                 CandidateCounters& cc, TraversalCounters& tc, bool any_hit = false) {
+  if (bvh.width == 4) return wide_closest_hit<4, Tester>(bvh, ray, filter, cc, tc, any_hit);
+  if (bvh.width == 8) return wide_closest_hit<8, Tester>(bvh, ray, filter, cc, tc, any_hit);
   Hit best;
   if (bvh.tris.empty()) return best;  // an empty scene: no root to read
   const Tester tester(ray);

@@ -1,5 +1,6 @@
 // RayBoxTester: the robust slab test (Ize 2013) of the closest-hit search, for
-// the root's box and for both child boxes of a BvhNode at once. The far
+// the root's box, for both child boxes of a BvhNode at once, and for every
+// slot of a 4- or 8-wide node (WideBvhNode) at once. The far
 // distance is widened by 1 + 2 gamma(3) so that float rounding never culls a box
 // the ray touches; a zero direction component is replaced by +-1e-18 (as Embree
 // does), so no slab distance is ever NaN.
@@ -50,6 +51,10 @@ class RayBoxTester {
     o_z_ = _mm_set1_ps(o_[2]);
     inv_z_ = _mm_set1_ps(inv_[2]);
     tmin4_ = _mm_set1_ps(ray.tmin);
+    for (int a = 0; a < 3; ++a) {
+      o_lanes_[a] = _mm_set1_ps(o_[a]);
+      inv_lanes_[a] = _mm_set1_ps(inv_[a]);
+    }
 #endif
   }
 
@@ -116,6 +121,57 @@ class RayBoxTester {
   }
 #endif
 
+  /// Tests the used slots of wide node `n` against [tmin, tmax]: bit c of the
+  /// result is set when slot c's box is met, entry[c] where the ray enters it
+  /// (clamped to tmin; written for every slot, meaningful only when bit c is
+  /// set). The same arithmetic as the two-child test, box by box.
+  template <int W>
+  unsigned hits(const WideBvhNode<W>& n, float tmax, float* entry) const {
+#if defined(__SSE2__)
+    return hits_wide_sse2(n, tmax, entry);
+#else
+    return hits_wide_scalar(n, tmax, entry);
+#endif
+  }
+
+  /// The wide test in plain float arithmetic (the reference form).
+  template <int W>
+  unsigned hits_wide_scalar(const WideBvhNode<W>& n, float tmax, float* entry) const {
+    unsigned mask = 0;
+    for (int c = 0; c < W; ++c) {
+      float tn = tmin_, tf = INFINITY;
+      for (int a = 0; a < 3; ++a) {
+        tn = std::max(tn, (n.box[a][near_side_[a]][c] - o_[a]) * inv_[a]);
+        tf = std::min(tf, (n.box[a][1 - near_side_[a]][c] - o_[a]) * inv_[a]);
+      }
+      entry[c] = tn;
+      mask |= static_cast<unsigned>(tn <= std::min(tf * kWiden, tmax)) << c;
+    }
+    return mask & ((1u << n.children) - 1u);
+  }
+
+#if defined(__SSE2__)
+  /// The wide test with SSE2, four slots a vector.
+  template <int W>
+  unsigned hits_wide_sse2(const WideBvhNode<W>& n, float tmax, float* entry) const {
+    const __m128 widen = _mm_set1_ps(kWiden), limit_t = _mm_set1_ps(tmax);
+    unsigned mask = 0;
+    for (int g = 0; g < W; g += 4) {
+      __m128 tn = tmin4_, tf = _mm_set1_ps(INFINITY);
+      for (int a = 0; a < 3; ++a) {
+        const __m128 near = _mm_load_ps(&n.box[a][near_side_[a]][g]);
+        const __m128 far = _mm_load_ps(&n.box[a][1 - near_side_[a]][g]);
+        tn = _mm_max_ps(tn, _mm_mul_ps(_mm_sub_ps(near, o_lanes_[a]), inv_lanes_[a]));
+        tf = _mm_min_ps(tf, _mm_mul_ps(_mm_sub_ps(far, o_lanes_[a]), inv_lanes_[a]));
+      }
+      _mm_storeu_ps(entry + g, tn);
+      const __m128 limit = _mm_min_ps(_mm_mul_ps(tf, widen), limit_t);
+      mask |= static_cast<unsigned>(_mm_movemask_ps(_mm_cmple_ps(tn, limit))) << g;
+    }
+    return mask & ((1u << n.children) - 1u);
+  }
+#endif
+
   /// Host bytes from the tester's start that the two-child test reads (a
   /// timing model may prefetch them before a step).
   static constexpr size_t two_child_host_bytes() { return offsetof(RayBoxTester, tmin_); }
@@ -133,6 +189,9 @@ class RayBoxTester {
   float o_[3];
   float inv_[3];
   int near_side_[3];  ///< per axis: 0 (low bound) when the reciprocal is >= 0, else 1
+#if defined(__SSE2__)
+  __m128 o_lanes_[3], inv_lanes_[3];    ///< per axis: o and 1/d in every lane (the wide test)
+#endif
 };
 
 }  // namespace vbsim

@@ -81,6 +81,18 @@ inline BvhNode round_outward(const BvhNode& n, int bits) {
   return r;
 }
 
+/// Wide node `n` with every used slot's box rounded outward (its references kept).
+template <int W>
+WideBvhNode<W> round_outward(const WideBvhNode<W>& n, int bits) {
+  WideBvhNode<W> r = n;
+  for (int a = 0; a < 3; ++a)
+    for (int c = 0; c < static_cast<int>(n.children); ++c) {
+      r.box[a][0][c] = round_down(n.box[a][0][c], bits);
+      r.box[a][1][c] = round_up(n.box[a][1][c], bits);
+    }
+  return r;
+}
+
 /// Every coordinate of `v` rounded to nearest.
 inline Vec3f round_nearest(const Vec3f& v, int bits) {
   return {round_nearest(v.x, bits), round_nearest(v.y, bits), round_nearest(v.z, bits)};

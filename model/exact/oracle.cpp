@@ -44,11 +44,6 @@ bool box_contains(const Bounds3f& b, Vec3f p) {
   return true;
 }
 
-bool box_contains(const Bounds3f& outer, const Bounds3f& inner) {
-  for (int a = 0; a < 3; ++a)
-    if (!(outer.lo[a] <= inner.lo[a] && inner.hi[a] <= outer.hi[a])) return false;
-  return true;
-}
 
 [[noreturn]] void bad_bvh(const std::string& where, const std::string& what) {
   throw std::invalid_argument("Oracle: BVH " + where + ": " + what);

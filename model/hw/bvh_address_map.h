@@ -1,7 +1,8 @@
 // BvhAddressMap: the byte addresses the cycle-level model reads.
 //
-//   node i          base + i * 64                         (BvhNode, 64-byte aligned)
-//   triangle i      tri_base + i * 40, tri_base = base + nodes * 64   (BvhTriangle)
+//   node i          base + i * node_bytes: the nodes of the tree's width (Bvh::width),
+//                   64 bytes (BvhNode), 128 (BvhNode4) or 256 (BvhNode8), 64-byte aligned
+//   triangle i      tri_base + i * 40, tri_base = base + nodes * node_bytes   (BvhTriangle)
 //   spill area      spill_base = tri_base + tris * 40 rounded up to 64; slot s's
 //                   traversal stack entry e at spill_base + s * 2048 + e * 16
 //                   (128 entries of 16 bytes per slot; see datapath/bvh_stepper.h)
@@ -17,19 +18,23 @@
 namespace vbsim::hw {
 
 struct BvhAddressMap {
-  static constexpr uint32_t kNodeBytes = 64;
   static constexpr uint32_t kTriangleBytes = 40;
   static constexpr uint32_t kStackEntryBytes = 16;
   static constexpr uint32_t kSpillBytesPerSlot = kTraversalStackDepth * kStackEntryBytes;
 
+  /// Bytes of one node record (one node fetch) at `width`: 64, 128 or 256.
+  static constexpr uint32_t node_bytes_at(int width) { return width == 8 ? 256u : width == 4 ? 128u : 64u; }
+
+  uint32_t node_bytes = 64;
   uint64_t node_base = 0, tri_base = 0, spill_base = 0;
 
   BvhAddressMap(const Bvh& bvh, uint64_t base)
-      : node_base(base),
-        tri_base(base + bvh.nodes.size() * uint64_t{kNodeBytes}),
+      : node_bytes(node_bytes_at(bvh.width)),
+        node_base(base),
+        tri_base(base + bvh.traversal_nodes() * uint64_t{node_bytes}),
         spill_base((tri_base + bvh.tris.size() * uint64_t{kTriangleBytes} + 63) / 64 * 64) {}
 
-  uint64_t node(uint32_t i) const { return node_base + uint64_t{i} * kNodeBytes; }
+  uint64_t node(uint32_t i) const { return node_base + uint64_t{i} * node_bytes; }
   uint64_t triangle(uint32_t i) const { return tri_base + uint64_t{i} * kTriangleBytes; }
   uint64_t stack_entry(uint32_t slot, uint32_t entry) const {
     return spill_base + uint64_t{slot} * kSpillBytesPerSlot + uint64_t{entry} * kStackEntryBytes;

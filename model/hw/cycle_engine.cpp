@@ -423,8 +423,8 @@ class Engine final : public CycleEngine, private SourceHost {
       case StepRequest::Node: {
         // The box test below waits for the node record: ask for it before the
         // memory model's work, so that the two overlap on the host.
-        __builtin_prefetch(&bvh_.nodes[s.pending.index]);
-        const uint64_t ready = read(s, id, map_.node(s.pending.index), BvhAddressMap::kNodeBytes, now);
+        __builtin_prefetch(node_host_ + size_t{s.pending.index} * map_.node_bytes);
+        const uint64_t ready = read(s, id, map_.node(s.pending.index), map_.node_bytes, now);
         if (__builtin_expect(ready == kPendingCycle, 0)) return park(s, now);
         return node_arrived(s, core, id, now, ready, now);
       }
@@ -623,7 +623,11 @@ class Engine final : public CycleEngine, private SourceHost {
       cfg_.box_low.count > 0 && !bvh_.low_precision_node.empty() ? bvh_.low_precision_node.data() : nullptr;
   // Per kind (0: a leaf's triangles, 1: a node), the modelled address of record `i`: base + stride * i.
   const uint64_t model_base_[2] = {map_.triangle(0), map_.node(0)};
-  const uint64_t model_stride_[2] = {BvhAddressMap::kTriangleBytes, BvhAddressMap::kNodeBytes};
+  const uint64_t model_stride_[2] = {BvhAddressMap::kTriangleBytes, map_.node_bytes};
+  /// The host copy of the node records traversal reads (of the tree's width).
+  const char* node_host_ = bvh_.width == 4   ? reinterpret_cast<const char*>(bvh_.nodes4.data())
+                           : bvh_.width == 8 ? reinterpret_cast<const char*>(bvh_.nodes8.data())
+                                             : reinterpret_cast<const char*>(bvh_.nodes.data());
   uint32_t source_id_ = slot_count(cfg_);
   uint32_t resumed_id_ = source_id_ + source_.event_ids();
   MemoryClock no_memory_work_{0};  // the clock without a memory step: never asked for a cycle

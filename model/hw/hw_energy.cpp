@@ -41,7 +41,9 @@ HwArea hw_area(const TechFile& t, const HwConfig& given, const ReplayOptions& op
   a.triangle_testers = cfg.cores * cfg.triangle.count;
   a.avoidance_units = opt.method.validity_bit && mo.suspect.total() > 0 ? cfg.cores * cfg.avoidance.count : 0;
   a.emission_lanes = mo.emission.total() > 0 ? cfg.source.rays_per_cycle : 0;
-  a.box_unit = t.area_mm2(shared_over(2 * box_test_ops(), cfg.box.issue_interval)) + t.area_mm2(box_setup_ops());
+  // A box unit tests every child box of a node in one operation: 2, 4 or 8 (bvh.width).
+  a.box_unit = t.area_mm2(shared_over(opt.bvh.width * box_test_ops(), cfg.box.issue_interval)) +
+               t.area_mm2(box_setup_ops());
   a.triangle_tester = t.area_mm2(shared_over(triangle_test_ops(opt.tester) + mo.candidate, cfg.triangle.issue_interval)) +
                       t.area_mm2(triangle_setup_ops(opt.tester));
   a.avoidance_unit = a.avoidance_units ? t.area_mm2(shared_over(mo.suspect, cfg.avoidance.issue_interval)) : 0.0;

@@ -87,6 +87,18 @@ class PortUnits {
     return a.met & 3u;
   }
 
+  template <int W>
+  unsigned wide_node_boxes(const Ray& ray, const RayBoxTester& latched, uint32_t node, const WideBvhNode<W>& n,
+                           float tmax, float* entry) {
+    BoxOp op = box_op(ray, latched, tmax);
+    op.node = node;
+    if constexpr (W == 4) op.node4_record = &n;
+    else op.node8_record = &n;
+    const BoxAnswer a = box(op);
+    for (int c = 0; c < W; ++c) entry[c] = a.entry[c];
+    return a.met & ((1u << n.children) - 1u);
+  }
+
   bool triangle(const Ray& ray, const Tester& latched, uint32_t index, const BvhTriangle& bt, float tmax, Hit& h) {
     const CoreBinding& c = *call_.core;
     if (c.triangle_builtin) {

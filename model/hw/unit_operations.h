@@ -37,13 +37,17 @@ struct OpSource {
 };
 
 /// One box-unit operation: the root's box at dispatch (node == kRootBox,
-/// `root` set, `node_record` null), or both child boxes of interior node
-/// `node` (`node_record` = &Bvh::nodes[node]).
+/// `root` set, every record null), or every child box of interior node `node`:
+/// of a binary tree both (`node_record` = &Bvh::nodes[node]), of a 4-wide
+/// (8-wide) tree every used slot (`node4_record` = &Bvh::nodes4[node], or
+/// `node8_record` = &Bvh::nodes8[node]). One record at most is set.
 struct BoxOp {
   static constexpr uint32_t kRootBox = ~uint32_t{0};
   OpSource from;
   uint32_t node = kRootBox;
   const BvhNode* node_record = nullptr;
+  const BvhNode4* node4_record = nullptr;
+  const BvhNode8* node8_record = nullptr;
   const Bounds3f* root = nullptr;
   const Ray* ray = nullptr;               ///< the ray as the slot holds it
   const RayBoxTester* latched = nullptr;  ///< the ray's latched box-test state (o, 1/d, tmin)
@@ -53,12 +57,13 @@ struct BoxOp {
   uint64_t ready = 0, now = 0;
 };
 
-/// Bit c of `met`: child c's box is met (the root test: bit 0, the root's box);
-/// entry[c]: where the ray enters it (read only when met, and only for nodes).
+/// Bit c of `met`: child (slot) c's box is met (the root test: bit 0, the
+/// root's box); entry[c]: where the ray enters it (read only when met, and only
+/// for nodes). Bits of unused slots are ignored.
 struct BoxAnswer {
   UnitSchedule schedule{0, 0};
   unsigned met = 0;
-  float entry[2] = {0.0f, 0.0f};
+  alignas(16) float entry[8];  // not cleared: read only where met
 };
 
 /// One triangle test: triangle `index` of Bvh::tris (scene triangle `prim`).

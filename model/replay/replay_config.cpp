@@ -57,6 +57,9 @@ void apply_replay_config(const nlohmann::json& j, const std::string& file, Repla
             "low, medium, high");
     fb.integer("max_leaf_size", opt.bvh.max_leaf_size);
     fb.number("traversal_cost", opt.bvh.traversal_cost);
+    fb.integer("width", opt.bvh.width);
+    if (opt.bvh.width != 2 && opt.bvh.width != 4 && opt.bvh.width != 8)
+      fail(file, "bvh.width", fmt::format("must be 2, 4 or 8, got {}", opt.bvh.width));
     if (!(opt.bvh.traversal_cost > 0 && opt.bvh.traversal_cost <= kMaxBvhTraversalCost))
       fail(file, "bvh.traversal_cost",
            fmt::format("must be in (0, {}], got {}", kMaxBvhTraversalCost, opt.bvh.traversal_cost));
@@ -69,6 +72,9 @@ void apply_replay_config(const nlohmann::json& j, const std::string& file, Repla
       fl.integer("mantissa_bits", mark.mantissa_bits);
       fl.number("t_trav_high", mark.t_trav_high);
       fl.number("t_trav_low", mark.t_trav_low);
+      if (opt.bvh.width != 2)
+        fail(file, "bvh.low_precision", fmt::format("takes bvh.width 2 (nodes of two precisions are binary), got {}",
+                                                    opt.bvh.width));
       try {
         check_bvh_precision(mark);
       } catch (const std::invalid_argument& e) {

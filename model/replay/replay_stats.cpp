@@ -173,7 +173,8 @@ nlohmann::json bvh_options_json(const BvhBuildOptions& b) {
   nlohmann::json j = {{"builder", bvh_builder_name(b.builder)},
                       {"quality", bvh_quality_name(b.quality)},
                       {"max_leaf_size", b.max_leaf_size},
-                      {"traversal_cost", b.traversal_cost}};
+                      {"traversal_cost", b.traversal_cost},
+                      {"width", b.width}};
   if (b.low_precision.enabled)
     j["low_precision"] = {{"mantissa_bits", b.low_precision.mantissa_bits},
                           {"t_trav_high", b.low_precision.t_trav_high},

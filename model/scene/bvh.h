@@ -36,17 +36,11 @@
 #include <vector>
 
 #include "datapath/triangle.h"
+#include "scene/bvh_ref.h"
 #include "scene/scene.h"
+#include "scene/wide_bvh_node.h"
 
 namespace vbsim {
-
-/// Reference to a subtree: an interior node or a leaf's triangle range.
-struct BvhRef {
-  uint32_t index = 0;  ///< count 0: index in Bvh::nodes; count > 0: first triangle in Bvh::tris
-  uint32_t count = 0;  ///< 0: interior node; else the leaf's number of triangles
-
-  bool is_leaf() const { return count != 0; }
-};
 
 struct alignas(64) BvhNode {
   float box[3][2][2];  ///< box[axis][0 low | 1 high][child]
@@ -124,9 +118,13 @@ struct BvhBuildOptions {
   float traversal_cost = 1.0f;
   /// Nodes of two precisions (off by default: every box in float32).
   BvhPrecisionMarking low_precision;
+  /// Children per interior node the traversal reads: 2 (BvhNode), or 4 or 8
+  /// (WideBvhNode, collapsed from the binary tree; scene/bvh_collapse.h).
+  /// Nodes of two precisions are binary only.
+  int width = 2;
   bool operator==(const BvhBuildOptions& o) const {
     return max_leaf_size == o.max_leaf_size && quality == o.quality && builder == o.builder &&
-           traversal_cost == o.traversal_cost && low_precision == o.low_precision;
+           traversal_cost == o.traversal_cost && low_precision == o.low_precision && width == o.width;
   }
 };
 
@@ -143,11 +141,25 @@ struct Bvh {
   /// 1 when both its children's boxes are low-precision (rounded outward in
   /// the record), so the low-precision box pool tests it; empty otherwise.
   std::vector<uint8_t> low_precision_node;
+  /// The node width traversal reads (BvhBuildOptions::width). At 4 (8) the
+  /// binary `nodes` are still there (the oracle, the statistics and the
+  /// converters read them) and `nodes4` (`nodes8`) holds the same tree
+  /// collapsed: the same leaves, the same child boxes, node 0 the root; `root`
+  /// refers to node 0 of either array, or to the same root leaf.
+  int width = 2;
+  std::vector<BvhNode4> nodes4;
+  std::vector<BvhNode8> nodes8;
+  /// Levels of the wide tree's longest root-to-leaf path, counting the leaf
+  /// (width 2: depth).
+  int wide_depth = 0;
+  /// Interior nodes traversal reads at this width.
+  size_t traversal_nodes() const { return width == 4 ? nodes4.size() : width == 8 ? nodes8.size() : nodes.size(); }
 };
 
 /// Builds the BVH of `scene` with the options' builder: rtcBuildBVH (quality,
 /// leaf size, traversal cost) or the sweep SAH (leaf size, traversal cost),
-/// then marks its nodes' precisions when the options ask (bvh_precision.h);
+/// then marks its nodes' precisions when the options ask (bvh_precision.h)
+/// and collapses it to the options' width (bvh_collapse.h);
 /// std::invalid_argument when an option is out of range. Every
 /// triangle appears in exactly one leaf; an empty scene gives no nodes and no triangles.
 Bvh build_bvh(const Scene& scene, const BvhBuildOptions& options = {});

@@ -17,6 +17,10 @@ void check_options(const BvhBuildOptions& options) {
   if (!(options.traversal_cost > 0 && options.traversal_cost <= kMaxBvhTraversalCost))
     throw std::invalid_argument(fmt::format("BvhBuildOptions.traversal_cost must be in (0, {}], got {}",
                                             kMaxBvhTraversalCost, options.traversal_cost));
+  if (options.width != 2 && options.width != 4 && options.width != 8)
+    throw std::invalid_argument(fmt::format("BvhBuildOptions.width must be 2, 4 or 8, got {}", options.width));
+  if (options.width != 2 && options.low_precision.enabled)
+    throw std::invalid_argument("BvhBuildOptions.width 4 and 8 take no low_precision: nodes of two precisions are binary");
   if (options.max_leaf_size < 1 || options.max_leaf_size > kMaxBvhLeafSize)
     throw std::invalid_argument(fmt::format("BvhBuildOptions.max_leaf_size must be in 1..{}, got {}",
                                             kMaxBvhLeafSize, options.max_leaf_size));

@@ -27,6 +27,7 @@
 
 #include "scene/bvh.h"
 #include "scene/bvh_build_common.h"
+#include "scene/bvh_collapse.h"
 #include "scene/bvh_precision.h"
 #include "scene/embree_device.h"
 #include "scene/sweep_sah_builder.h"
@@ -205,6 +206,7 @@ Bvh build_bvh(const Scene& scene, const BvhBuildOptions& options) {
   if (options.low_precision.enabled) check_bvh_precision(options.low_precision);
   Bvh bvh = build_tree(scene, options);
   if (options.low_precision.enabled) mark_low_precision(bvh, options.low_precision);
+  collapse_bvh(bvh, options.width);
   return bvh;
 }
 

@@ -28,6 +28,10 @@ BvhStats compute_bvh_stats(const Bvh& bvh) {
   s.triangles = static_cast<int64_t>(bvh.tris.size());
   s.node_bytes = s.nodes * static_cast<int64_t>(sizeof(BvhNode));
   s.triangle_bytes = s.triangles * static_cast<int64_t>(sizeof(BvhTriangle));
+  s.width = bvh.width;
+  s.wide_nodes = static_cast<int64_t>(bvh.traversal_nodes());
+  s.wide_node_bytes = s.wide_nodes * (bvh.width == 8 ? 256 : bvh.width == 4 ? 128 : 64);
+  s.wide_depth = bvh.width == 2 ? bvh.depth : bvh.wide_depth;
   if (bvh.tris.empty()) return s;  // build_bvh's empty scene: no nodes, no leaves, depth 0
 
   const double root_area = surface_area(bvh.root_bounds);
@@ -55,9 +59,9 @@ std::string format_bvh_stats(const BvhStats& s) {
   return fmt::format(
       "nodes: {}\nleaves: {}\ntriangles: {}\naverage leaf size: {:.3f} triangles\n"
       "max leaf size: {} triangles\ndepth: {} levels\nnode bytes: {} B\ntriangle bytes: {} B\n"
-      "SAH cost: {:.3f}\n",
+      "SAH cost: {:.3f}\nwidth: {}\nwide nodes: {}\nwide node bytes: {} B\nwide depth: {} levels\n",
       s.nodes, s.leaves, s.triangles, s.average_leaf_size, s.max_leaf_size, s.depth, s.node_bytes,
-      s.triangle_bytes, s.sah_cost);
+      s.triangle_bytes, s.sah_cost, s.width, s.wide_nodes, s.wide_node_bytes, s.wide_depth);
 }
 
 }  // namespace vbsim

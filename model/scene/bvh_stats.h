@@ -21,6 +21,10 @@ struct BvhStats {
   int64_t max_leaf_size = 0;    ///< triangles in the largest leaf
   int depth = 0;                ///< levels on the longest root-to-leaf path, leaf included (Bvh::depth), recounted
   int64_t node_bytes = 0;       ///< nodes * sizeof(BvhNode)
+  int width = 2;                ///< children per node traversal reads (Bvh::width)
+  int64_t wide_nodes = 0;       ///< width 4 or 8: the wide tree's nodes (traversal reads them); 2: nodes
+  int64_t wide_node_bytes = 0;  ///< wide_nodes * 128 (width 4) or 256 (width 8); 2: node_bytes
+  int wide_depth = 0;           ///< the wide tree's levels, leaf included (Bvh::wide_depth); 2: depth
   int64_t triangle_bytes = 0;   ///< triangles * sizeof(BvhTriangle)
   /// Expected cost of a ray that enters the root, in units of one node visit:
   /// sum over interior nodes of kSahTraversalCost * A(n) / A(root) plus sum over

@@ -78,8 +78,8 @@ void run_bench(const BenchArgs& a) {
   fmt::print("  vbsim   {:>12.0f} rays/s   ({} hits)\n", r.vbsim_rays_per_s, r.vbsim_hits);
   fmt::print("  embree  {:>12.0f} rays/s   ({} hits)\n", r.embree_rays_per_s, r.embree_hits);
   fmt::print("  ratio   {:>12.3f}          (same triangle on {} of {} rays)\n", r.ratio, r.same_prim, r.rays);
-  fmt::print("  vbsim work per ray: {:.1f} box tests, {:.1f} triangle tests\n", r.box_tests_per_ray,
-             r.triangle_tests_per_ray);
+  fmt::print("  vbsim work per ray: {:.1f} node fetches, {:.1f} box tests, {:.1f} triangle tests\n",
+             r.node_fetches_per_ray, r.box_tests_per_ray, r.triangle_tests_per_ray);
 }
 
 }  // namespace

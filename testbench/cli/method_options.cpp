@@ -46,6 +46,9 @@ void add_method_options(CLI::App& app, MethodOptions& o, const std::string& defa
                  "on it, the work does [high]");
   app.add_option("--bvh-leaf-size", o.bvh_leaf_size,
                  fmt::format("the BVH's largest leaf, 1 to {} triangles [4]", kMaxBvhLeafSize));
+  app.add_option("--bvh-width", o.bvh_width,
+                 "children per BVH node the traversal reads: 2, or 4 or 8 (the binary tree collapsed, every child "
+                 "box of a node tested in one operation); hits do not depend on it, the work does [2]");
   app.add_option("--bvh-traversal-cost", o.bvh_traversal_cost,
                  "the BVH builder's cost of a node step against a triangle test's 1: larger gives larger leaves [1]");
   add_parent_window_option(app, o.parent_window);
@@ -92,6 +95,7 @@ void apply_command_line(const MethodOptions& o, ReplayOptions& opt) {
   if (o.bvh_quality) j["bvh"]["quality"] = *o.bvh_quality;
   if (o.bvh_leaf_size) j["bvh"]["max_leaf_size"] = *o.bvh_leaf_size;
   if (o.bvh_traversal_cost) j["bvh"]["traversal_cost"] = *o.bvh_traversal_cost;
+  if (o.bvh_width) j["bvh"]["width"] = *o.bvh_width;
   if (o.vb_tests) {
     nlohmann::json tests = {{"normal", false}, {"ray", false}, {"component", false}};
     std::stringstream in(*o.vb_tests);

@@ -22,7 +22,7 @@ struct MethodOptions {
   std::optional<float> vb_eps, vb_component_scale;
   std::optional<int> vb_guard_bits, vb_min_exponent;
   std::optional<std::string> bvh_builder, bvh_quality;
-  std::optional<int> bvh_leaf_size;
+  std::optional<int> bvh_leaf_size, bvh_width;
   std::optional<float> bvh_traversal_cost;
   int64_t parent_window = ParentRayStore::kDefaultWindow;  ///< --parent-window
   bool score_incomplete = false;  ///< --score-incomplete

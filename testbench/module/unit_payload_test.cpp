@@ -58,9 +58,14 @@ class RecordingBoxUnit final : public sc_core::sc_module, public BoxUnitIf {
   RecordingBoxUnit(sc_core::sc_module_name n, Record& r) : sc_core::sc_module(n), r_(r) {}
   BoxAnswer test_boxes(const BoxOp& op) override {
     r_.seen(op.from, 'b', op.node, op.tmax, op.now);
-    if (op.node == BoxOp::kRootBox ? op.root != &r_.bvh->root_bounds || op.node_record
-                                   : op.node_record != &r_.bvh->nodes[op.node] || op.root)
-      ++r_.payload_errors;
+    const Bvh& b = *r_.bvh;
+    const bool records_right =
+        op.node == BoxOp::kRootBox
+            ? op.root == &b.root_bounds && !op.node_record && !op.node4_record && !op.node8_record
+            : !op.root && op.node_record == (b.width == 2 ? &b.nodes[op.node] : nullptr) &&
+                  op.node4_record == (b.width == 4 ? &b.nodes4[op.node] : nullptr) &&
+                  op.node8_record == (b.width == 8 ? &b.nodes8[op.node] : nullptr);
+    if (!records_right) ++r_.payload_errors;
     if (!op.ray || !op.latched || op.ready < op.now) ++r_.payload_errors;
     BoxAnswer a = BoxUnit::compute(op);
     a.schedule = {op.ready, op.ready + 1};
@@ -130,6 +135,12 @@ struct ReferenceUnits {
                       float& e1) {
     out.push_back({'b', node, tmax, 0, 0, 0});
     return BuiltinUnits::node_boxes(ray, l, node, n, tmax, e0, e1);
+  }
+  template <int W>
+  unsigned wide_node_boxes(const Ray& ray, const RayBoxTester& l, uint32_t node, const WideBvhNode<W>& n, float tmax,
+                           float* entry) {
+    out.push_back({'b', node, tmax, 0, 0, 0});
+    return BuiltinUnits::wide_node_boxes(ray, l, node, n, tmax, entry);
   }
   template <class Tester>
   bool triangle(const Ray& ray, const Tester& t, uint32_t i, const BvhTriangle& bt, float tmax, Hit& h) {

@@ -12,6 +12,7 @@
 #include "datapath/bvh_stepper.h"
 #include "datapath/testers.h"
 #include "replay/ray_emission.h"
+#include "scene/bvh_collapse.h"
 #include "replay/replay_run.h"
 #include "trace/trace_file.h"
 #include "trace/trace_source.h"
@@ -136,6 +137,29 @@ TEST_CASE("stepper gives closest_hit's hit on random rays", "[stepper]") {
   }
   CHECK(hits > 300);  // the comparison covered real hits, not only misses
   if (depth == 2) CHECK(t.spills > 0);
+}
+
+TEST_CASE("stepper gives closest_hit's hit and work over 4- and 8-wide trees", "[stepper][wide]") {
+  const SceneAndBvh& sb = bunny();
+  const int width = GENERATE(4, 8);
+  const int depth = GENERATE(2, 16);
+  Bvh bvh = sb.bvh;
+  collapse_bvh(bvh, width);
+  const std::vector<TraceRay> rays = bench_rays(sb.scene, 3000, 7);
+  const CandidateFilter filter(SelfIntersectionMethod{});
+  BvhStepper<ThreeHalfPlaneTester> stepper(bvh, filter, depth);
+  Totals t;
+  uint64_t hits = 0;
+  for (const TraceRay& tr : rays) {
+    Ray r;
+    r.o = tr.o;
+    r.d = tr.d;
+    for (bool any : {false, true}) check_ray(bvh, filter, stepper, r, any, t);
+    hits += stepper.hit().prim >= 0;
+  }
+  CHECK(hits > 300);
+  if (depth == 2) CHECK(t.spills > 0);  // several pushes a node: spills and refills too
+  if (depth == 2) CHECK(t.refills > 0);
 }
 
 namespace {

@@ -8,9 +8,11 @@
 #include <vector>
 
 #include "bench/functional_bench.h"
+#include "hw/bvh_address_map.h"
 #include "hw/cycle_replay.h"
 #include "hw/examples/reduced_precision_units.h"
 #include "replay/replay_run.h"
+#include "scene/bvh_collapse.h"
 #include "trace/trace_file.h"
 #include "three_floors.h"
 
@@ -371,4 +373,38 @@ TEST_CASE("a node whose children are both low-precision goes to the low-precisio
   CHECK(no_pool.rays.at(1).cycle == 1 + Lb + 2 * (M + Lb) + (M + Lt));
   CHECK(no_pool.result.counters.box.ops == 3);
   CHECK_FALSE(no_pool.result.hw["units"].contains("box_low"));
+}
+
+TEST_CASE("a 4-wide node is one 128-byte fetch and one box operation for all its children, by hand",
+          "[cycle][wide]") {
+  // The three floors collapsed 4 wide: node 0 = {leaf [prim 0], leaf [prim 1],
+  // leaf [prim 2]} (node 1 opened in place: slots in the binary walk's order).
+  ThreeFloors f;
+  collapse_bvh(f.bvh, 4);
+  REQUIRE(f.bvh.nodes4.size() == 1);
+  REQUIRE(f.bvh.nodes4[0].children == 3);
+  const BvhAddressMap map(f.bvh, 4096);
+  CHECK(map.node_bytes == 128);
+  CHECK(map.node(1) == 4096 + 128);
+  CHECK(map.triangle(0) == 4096 + 128);  // one wide node before the triangles
+  const uint32_t M = 3, Lb = 5, Lt = 11, La = 7;
+  TraceRay a = down_from(1, 1.0f);
+  TraceRay b = down_from(2, 1e-7f);  // as in the three-node case: prim 0 rejected, prim 1 accepted
+  b.parent = 1;
+  b.parent_prim = 0;
+  b.kind = RayKind::Reflect;
+  b.sign = 1;
+  HwConfig cfg = one_slot(M, Lb, Lt, La);
+  cfg.source.dependencies = false;
+  const Run run = run_rays({a, b}, f.scene, f.bvh, validity_bit_options(), cfg);
+  REQUIRE(run.rays.at(1).prim == 0);
+  REQUIRE(run.rays.at(2).prim == 1);
+  const uint64_t latency_a = Lb + (M + Lb) + (M + Lt);  // root box, node 0 (three boxes), leaf [prim 0]
+  const uint64_t latency_b = Lb + (M + Lb) + (M + Lt + La) + (M + Lt + La);
+  CHECK(run.rays.at(1).cycle == 1 + latency_a);
+  CHECK(run.rays.at(2).cycle == 1 + latency_a + latency_b);
+  const HwCounters& c = run.result.counters;
+  CHECK(c.box.ops == 4);  // one a node, where the binary tree took two nodes
+  CHECK(c.triangle.ops == 3);
+  CHECK(c.memory_wait_cycles == 5 * M);
 }

@@ -75,6 +75,9 @@ TEST_CASE("energy: unit areas from their operators, shared over the issue interv
   opt.method = validity_bit();
   const hw::HwArea a = hw::hw_area(unit_tech(), cfg, opt);
   CHECK(a.box_unit == 40 + 15);  // two boxes' operators and the set-up
+  ReplayOptions wide = opt;
+  wide.bvh.width = 8;
+  CHECK(hw::hw_area(unit_tech(), cfg, wide).box_unit == 8 * 20 + 15);  // a wide node's eight boxes at once
   // Issue interval 2: ceil(kind / 2) operators of (three-half-plane + the sign
   // compare): fadd 11, fmul 10, fdiv 2, fcmp 8, fsel 1, iadd 1; set-up 9.
   CHECK(a.triangle_tester == 11 + 10 + 2 + 8 + 1 + 1 + 9);

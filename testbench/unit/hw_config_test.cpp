@@ -134,7 +134,7 @@ TEST_CASE("a replay config's bvh build options are read, checked and echoed", "[
   CHECK(opt.bvh.builder == BvhBuilder::Embree);  // the default
   const nlohmann::json echo = replay_config_json(opt)["bvh"];
   CHECK(echo == nlohmann::json::parse(
-                    R"({"builder": "embree", "quality": "low", "max_leaf_size": 16, "traversal_cost": 4.0})"));
+                    R"({"builder": "embree", "quality": "low", "max_leaf_size": 16, "traversal_cost": 4.0, "width": 2})"));
   ReplayOptions back;
   apply_replay_config(nlohmann::json{{"bvh", echo}}, "f", back);
   CHECK(back.bvh == opt.bvh);
@@ -152,11 +152,20 @@ TEST_CASE("a replay config's bvh build options are read, checked and echoed", "[
   apply_replay_config(nlohmann::json{{"bvh", replay_config_json(marked)["bvh"]}}, "f", marked_back);
   CHECK(marked_back.bvh == marked.bvh);
   CHECK_FALSE(replay_config_json(opt)["bvh"].contains("low_precision"));
+  // The node width: read, echoed, read back.
+  ReplayOptions wide;
+  apply_replay_config(nlohmann::json::parse(R"({"bvh": {"width": 8}})"), "f", wide);
+  CHECK(wide.bvh.width == 8);
+  ReplayOptions wide_back;
+  apply_replay_config(nlohmann::json{{"bvh", replay_config_json(wide)["bvh"]}}, "f", wide_back);
+  CHECK(wide_back.bvh == wide.bvh);
+  CHECK_FALSE(wide.bvh == opt.bvh);
   for (const char* bad : {R"({"bvh": {"quality": "best"}})", R"({"bvh": {"max_leaf_size": 33}})",
                           R"({"bvh": {"traversal_cost": 0}})", R"({"bvh": {"leaves": 2}})",
                           R"({"bvh": {"builder": "sah"}})", R"({"bvh": {"low_precision": {"mantissa_bits": 23}}})",
                           R"({"bvh": {"low_precision": {"t_trav_low": -1}}})",
-                          R"({"bvh": {"low_precision": {"bits": 7}}})"}) {
+                          R"({"bvh": {"low_precision": {"bits": 7}}})", R"({"bvh": {"width": 3}})",
+                          R"({"bvh": {"width": 16}})", R"({"bvh": {"width": 4, "low_precision": {}}})"}) {
     INFO(bad);
     ReplayOptions o;
     CHECK_THROWS_WITH(apply_replay_config(nlohmann::json::parse(bad), "cfg.json", o),

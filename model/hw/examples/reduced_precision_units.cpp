@@ -28,10 +28,18 @@ ReducedPrecisionBoxUnit::ReducedPrecisionBoxUnit(sc_core::sc_module_name name, c
 BoxAnswer ReducedPrecisionBoxUnit::test_boxes(const BoxOp& op) {
   BoxOp rounded = op;
   BvhNode node;
+  BvhNode4 node4;
+  BvhNode8 node8;
   Bounds3f root;
   if (op.node_record) {
     node = round_outward(*op.node_record, bits_);
     rounded.node_record = &node;
+  } else if (op.node4_record) {
+    node4 = round_outward(*op.node4_record, bits_);
+    rounded.node4_record = &node4;
+  } else if (op.node8_record) {
+    node8 = round_outward(*op.node8_record, bits_);
+    rounded.node8_record = &node8;
   } else {
     root = round_outward(*op.root, bits_);
     rounded.root = &root;

@@ -1,0 +1,76 @@
+// The rules every closest-hit search over the project's BVH keeps, whatever
+// its node width: the work counters, the stack depth, and how ties and the
+// culling bound are decided (so that the hit does not depend on the tree).
+#pragma once
+#include <cstdint>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "datapath/hit.h"
+#include "datapath/ray_box_tester.h"
+#include "scene/bvh.h"
+
+namespace vbsim {
+
+/// Work one search did, for cost accounting.
+struct TraversalCounters {
+  uint64_t node_visits = 0;     ///< node fetches: one per interior node visited (of the tree's width)
+  uint64_t box_tests = 0;       ///< the root's box, then every used child slot's box of every node fetched
+  uint64_t triangle_tests = 0;  ///< triangles handed to the tester
+  uint64_t stack_pushes = 0;    ///< farther children pushed (both children met)
+  uint64_t stack_pops = 0;      ///< entries popped (the search ends with the rest unpopped)
+  void add(const TraversalCounters& o) {
+    node_visits += o.node_visits;
+    box_tests += o.box_tests;
+    triangle_tests += o.triangle_tests;
+    stack_pushes += o.stack_pushes;
+    stack_pops += o.stack_pops;
+  }
+};
+
+constexpr int kTraversalStackDepth = 128;
+
+// Ties. A closest-hit search keeps, of candidates at the same distance, the one
+// of the lowest primitive id, so that its hit does not depend on the order the
+// tree presents triangles in (any BVH gives the same hit; docs/hw-model.md,
+// "The BVH"). Once it holds a hit at `tmax`, the tester is asked for an
+// interval a few ulps beyond tmax (candidate_limit: a tester's scaled interval
+// check rounds, and must not drop a candidate whose distance comes out at tmax),
+// and of what it answers only a candidate before tmax, or at tmax with a lower
+// id, is taken (nearer_than_best). Boxes are culled
+// only beyond cull_limit(tmax), tmax widened as the box test widens a box's exit:
+// a box's entry and a triangle on its face are rounded apart by a few ulps, and
+// a box entered just beyond the hit must still be visited for a triangle at the
+// hit's distance to be found whatever box holds it.
+// An any-hit search stops at the first accepted hit, whatever its id.
+
+/// The distance beyond which boxes and stack entries are culled (above).
+inline float cull_limit(float tmax) { return tmax * RayBoxTester::kWiden; }
+
+/// The upper bound to test a triangle against: the ray's tmax, or once the
+/// search holds a hit at tmax, cull_limit(tmax) (so that a tie is seen).
+inline float candidate_limit(const Hit& best, float tmax) { return best.prim >= 0 ? cull_limit(tmax) : tmax; }
+
+/// Whether candidate `h` (inside candidate_limit) is nearer than `best` at
+/// `tmax`: closer, or at the same distance with a lower primitive id.
+inline bool nearer_than_best(const Hit& h, const Hit& best, float tmax) {
+  return h.t < tmax || (h.t == tmax && best.prim >= 0 && h.prim < best.prim);
+}
+
+/// Throws std::runtime_error when `bvh` is deeper than the traversal stack. A
+/// binary search keeps at most one stack entry per node fetched on its current
+/// path, so at most depth - 1 entries (Bvh::depth counts the leaf's level too),
+/// and it writes one slot past the kept entries at every fetch: depth - 1 must
+/// stay below kTraversalStackDepth. A W-wide search keeps at most W - 1 entries
+/// per node on its path: (W - 1) (wide_depth - 1) must not exceed it.
+inline void check_traversal_depth(const Bvh& bvh) {
+  if (bvh.width == 2 ? bvh.depth - 1 >= kTraversalStackDepth
+                     : (bvh.width - 1) * (bvh.wide_depth - 1) > kTraversalStackDepth)
+    throw std::runtime_error(fmt::format(
+        "BVH too deep for the traversal stack of {} entries: width {}, {} levels (a {}-wide search may keep {} entries)",
+        kTraversalStackDepth, bvh.width, bvh.width == 2 ? bvh.depth : bvh.wide_depth, bvh.width,
+        bvh.width == 2 ? bvh.depth - 1 : (bvh.width - 1) * (bvh.wide_depth - 1)));
+}
+
+}  // namespace vbsim

@@ -1,0 +1,120 @@
+// Closest-hit (and any-hit) search over a 4- or 8-wide BVH (Bvh::nodes4 /
+// nodes8): one node fetch gives every child slot's box, all tested at once
+// (RayBoxTester's wide test); the met children are visited nearest first: the
+// nearest is descended into and the others pushed, farthest first, so the
+// next nearest is popped next. Ties on the entry distance go to the lower
+// slot. Leaves, candidate filtering, ties between hits and culling are those
+// of the binary search (search_rules.h), so the hit is the same whatever the
+// width.
+#pragma once
+#include <cstdint>
+
+#include "datapath/candidate_filter.h"
+#include "datapath/hit.h"
+#include "datapath/ray.h"
+#include "datapath/ray_box_tester.h"
+#include "datapath/search_rules.h"
+#include "scene/bvh.h"
+
+namespace vbsim {
+
+/// The slots whose bit is set in `met`, nearest entry first (ties: lower slot
+/// first), into `order`; returns how many.
+inline int wide_visit_order(unsigned met, const float* entry, int* order) {
+  int n = 0;
+  while (met != 0u) {
+    const int c = __builtin_ctz(met);
+    met &= met - 1u;
+    int k = n++;
+    for (; k > 0 && entry[order[k - 1]] > entry[c]; --k) order[k] = order[k - 1];  // stable: equal stays after
+    order[k] = c;
+  }
+  return n;
+}
+
+/// The wide node array of `bvh` for width W.
+template <int W>
+const std::vector<WideBvhNode<W>>& wide_nodes(const Bvh& bvh);
+template <>
+inline const std::vector<BvhNode4>& wide_nodes<4>(const Bvh& bvh) { return bvh.nodes4; }
+template <>
+inline const std::vector<BvhNode8>& wide_nodes<8>(const Bvh& bvh) { return bvh.nodes8; }
+
+/// closest_hit() over the W-wide tree (precondition: bvh.width == W).
+template <int W, class Tester>
+Hit wide_closest_hit(const Bvh& bvh, const Ray& ray, const CandidateFilter& filter, CandidateCounters& cc,
+                     TraversalCounters& tc, bool any_hit) {
+  Hit best;
+  if (bvh.tris.empty()) return best;
+  const Tester tester(ray);
+  const RayBoxTester box(ray);
+  float tmax = ray.tmax;
+  struct Entry {
+    uint32_t index, count;
+    float t;
+  } stack[kTraversalStackDepth];
+  int sp = 0;
+  uint64_t node_visits = 0, box_tests = 1, triangle_tests = 0, pushes = 0;
+  const auto finish = [&] {
+    tc.node_visits += node_visits;
+    tc.box_tests += box_tests;
+    tc.triangle_tests += triangle_tests;
+    tc.stack_pushes += pushes;
+    tc.stack_pops += pushes - static_cast<uint64_t>(sp);
+    return best;
+  };
+  if (!box.hits(bvh.root_bounds, cull_limit(tmax))) return finish();
+  const WideBvhNode<W>* const nodes = wide_nodes<W>(bvh).data();
+  const BvhTriangle* const tris = bvh.tris.data();
+  BvhRef ref = bvh.root;
+  for (;;) {
+    if (!ref.is_leaf()) {
+      const WideBvhNode<W>& n = nodes[ref.index];
+      ++node_visits;
+      box_tests += n.children;
+      alignas(16) float entry[W];
+      const unsigned met = box.hits(n, cull_limit(tmax), entry);
+      if (met != 0u) {
+        const unsigned rest = met & (met - 1u);
+        if (rest == 0u) {  // one child met: no ordering
+          ref = n.child(__builtin_ctz(met));
+          continue;
+        }
+        if ((rest & (rest - 1u)) == 0u) {  // two met (the commonest case after one): one comparison
+          const int a = __builtin_ctz(met), b = __builtin_ctz(rest);  // a < b: a wins a tie
+          const int near = entry[b] < entry[a] ? b : a, far = a + b - near;
+          stack[sp++] = {n.ref[far], n.count[far], entry[far]};
+          ++pushes;
+          ref = n.child(near);
+          continue;
+        }
+        int order[W];
+        const int k = wide_visit_order(met, entry, order);
+        for (int i = k - 1; i >= 1; --i) stack[sp++] = {n.ref[order[i]], n.count[order[i]], entry[order[i]]};
+        pushes += static_cast<uint64_t>(k - 1);
+        ref = n.child(order[0]);
+        continue;
+      }
+    } else {
+      for (uint32_t i = ref.index, end = ref.index + ref.count; i < end; ++i) {
+        const BvhTriangle& bt = tris[i];
+        ++triangle_tests;
+        Hit h;
+        if (!tester.intersect(bt.tri, candidate_limit(best, tmax), h)) continue;
+        h.prim = static_cast<int32_t>(bt.prim);
+        if (!nearer_than_best(h, best, tmax)) continue;
+        if (!filter.accept(ray, bt.tri, h.prim, h, cc)) continue;
+        best = h;
+        tmax = h.t;
+        if (any_hit) return finish();
+      }
+    }
+    do {
+      if (sp == 0) return finish();
+      --sp;
+    } while (stack[sp].t > cull_limit(tmax));
+    ref = BvhRef{stack[sp].index, stack[sp].count};
+  }
+}
+
+}  // namespace vbsim
