@@ -40,10 +40,19 @@ inline const std::vector<BvhNode4>& wide_nodes<4>(const Bvh& bvh) { return bvh.n
 template <>
 inline const std::vector<BvhNode8>& wide_nodes<8>(const Bvh& bvh) { return bvh.nodes8; }
 
-/// closest_hit() over the W-wide tree (precondition: bvh.width == W).
-template <int W, class Tester>
-Hit wide_closest_hit(const Bvh& bvh, const Ray& ray, const CandidateFilter& filter, CandidateCounters& cc,
-                     TraversalCounters& tc, bool any_hit) {
+/// The box test of a wide search: RayBoxTester's SSE2 (or scalar) form.
+struct PortableWideBoxes {
+  template <int W>
+  static unsigned hits(const RayBoxTester& box, const WideBvhNode<W>& n, float tmax, float* entry) {
+    return box.hits(n, tmax, entry);
+  }
+};
+
+/// The search itself, whatever the box test; inlined into each entry point
+/// below, so that the AVX2 one is compiled for AVX2 throughout.
+template <int W, class Tester, class Boxes>
+__attribute__((always_inline)) inline Hit wide_search(const Bvh& bvh, const Ray& ray, const CandidateFilter& filter,
+                                                      CandidateCounters& cc, TraversalCounters& tc, bool any_hit) {
   Hit best;
   if (bvh.tris.empty()) return best;
   const Tester tester(ray);
@@ -73,7 +82,7 @@ Hit wide_closest_hit(const Bvh& bvh, const Ray& ray, const CandidateFilter& filt
       ++node_visits;
       box_tests += n.children;
       alignas(16) float entry[W];
-      const unsigned met = box.hits(n, cull_limit(tmax), entry);
+      const unsigned met = Boxes::template hits<W>(box, n, cull_limit(tmax), entry);
       if (met != 0u) {
         const unsigned rest = met & (met - 1u);
         if (rest == 0u) {  // one child met: no ordering
@@ -115,6 +124,39 @@ Hit wide_closest_hit(const Bvh& bvh, const Ray& ray, const CandidateFilter& filt
     } while (stack[sp].t > cull_limit(tmax));
     ref = BvhRef{stack[sp].index, stack[sp].count};
   }
+}
+
+#if defined(__x86_64__) && defined(__GNUC__)
+/// The 8-wide box test in one AVX2 vector (RayBoxTester::hits_avx2).
+struct Avx2WideBoxes {
+  template <int W>
+  __attribute__((target("avx2"))) static unsigned hits(const RayBoxTester& box,
+                                                                        const WideBvhNode<W>& n, float tmax,
+                                                                        float* entry) {
+    static_assert(W == 8, "the AVX2 test is 8 wide");
+    return box.hits_avx2(n, tmax, entry);
+  }
+};
+
+template <class Tester>
+__attribute__((target("avx2"), noinline)) Hit wide_closest_hit_avx2(const Bvh& bvh, const Ray& ray,
+                                                                     const CandidateFilter& filter,
+                                                                     CandidateCounters& cc, TraversalCounters& tc,
+                                                                     bool any_hit) {
+  return wide_search<8, Tester, Avx2WideBoxes>(bvh, ray, filter, cc, tc, any_hit);
+}
+#endif
+
+/// closest_hit() over the W-wide tree (precondition: bvh.width == W): 8 wide
+/// on an AVX2 host with the AVX2 box test (the same answers), else SSE2.
+template <int W, class Tester>
+Hit wide_closest_hit(const Bvh& bvh, const Ray& ray, const CandidateFilter& filter, CandidateCounters& cc,
+                     TraversalCounters& tc, bool any_hit) {
+#if defined(__x86_64__) && defined(__GNUC__)
+  if constexpr (W == 8)
+    if (host_has_avx2()) return wide_closest_hit_avx2<Tester>(bvh, ray, filter, cc, tc, any_hit);
+#endif
+  return wide_search<W, Tester, PortableWideBoxes>(bvh, ray, filter, cc, tc, any_hit);
 }
 
 }  // namespace vbsim

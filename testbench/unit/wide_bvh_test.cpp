@@ -1,7 +1,8 @@
 // Nodes 4 and 8 wide (scene/bvh_collapse.h, datapath/wide_closest_hit.h): a
 // collapse and a search worked by hand, the layout promises of the wide
-// nodes on the bunny, the wide box test against the one-box test it must
-// equal, and the same hits as the binary search on every ray.
+// nodes on the bunny, the wide box test (scalar, SSE2 and, on an AVX2 host,
+// AVX2) against the one-box test it must equal, and the same hits as the
+// binary search on every ray.
 #include <catch2/catch.hpp>
 
 #include <cstring>
@@ -200,6 +201,13 @@ TEST_CASE("the wide box test answers as the one-box test does, slot by slot", "[
       alignas(16) float entry[8], scalar_entry[8];
       const unsigned mask = box.hits(n, tmax, entry);
       CHECK(mask == box.hits_wide_scalar(n, tmax, scalar_entry));
+#if defined(__x86_64__) && defined(__GNUC__)
+      if (host_has_avx2()) {  // the 8-wide search's AVX2 form: the same bits
+        alignas(32) float avx_entry[8];
+        CHECK(box.hits_avx2(n, tmax, avx_entry) == mask);
+        for (int c = 0; c < static_cast<int>(n.children); ++c) CHECK(same_bits(avx_entry[c], entry[c]));
+      }
+#endif
       for (int c = 0; c < static_cast<int>(n.children); ++c) {
         const bool one = box.hits(n.child_bounds(c), tmax);
         CHECK(((mask >> c) & 1u) == (one ? 1u : 0u));
