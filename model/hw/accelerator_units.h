@@ -4,7 +4,7 @@
 // returns a module implementing the unit's interface (hw/unit_interfaces.h),
 // which the enclosing module's port is bound to:
 //
-//   box_unit         BoxUnitIf         (in each core) the root's box, both child boxes of a node
+//   box_unit         BoxUnitIf         (in each core) the root's box, every child box of a node
 //   triangle_tester  TriangleTesterIf  (in each core) one triangle: candidate, t, u, v, front/back bit
 //   avoidance_unit   AvoidanceUnitIf   (in each core) one suspect candidate: reject or accept
 //   l1_cache         MemoryReadIf      (in each core) the core's whole memory path, or, when it

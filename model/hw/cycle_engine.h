@@ -9,7 +9,7 @@
 // SC_METHOD drives it (advance) and keeps SystemC time in step.
 //
 // Steps of a slot (docs/hw-model.md has their timing): the root box at
-// dispatch, a node (read it, test both child boxes), a leaf (read its
+// dispatch, a node (read it, test every child box), a leaf (read its
 // triangles, test each, send suspects to the avoidance unit), a stack refill,
 // and done (the result sink). A read whose data come later (approximately timed
 // memory) parks the slot until resume().

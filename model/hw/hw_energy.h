@@ -19,7 +19,7 @@ namespace vbsim::hw {
 
 /// Area of one instance of each unit, in mm², and the chip's.
 struct HwArea {
-  double box_unit = 0;         ///< one box unit: both child boxes' tests and the per-ray set-up
+  double box_unit = 0;         ///< one box unit: every child box of a node (bvh.width) and the per-ray set-up
   double triangle_tester = 0;  ///< one tester: its test, set-up and the candidate compare
   double avoidance_unit = 0;   ///< one avoidance unit (0 when the method has none)
   double emission_unit = 0;    ///< the ray source's emission-time arithmetic, per emission lane

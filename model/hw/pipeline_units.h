@@ -49,7 +49,7 @@ class PipelineUnit : public sc_core::sc_module, public StatProvider {
   UnitPipelines pipes_;
 };
 
-/// Tests both child boxes of one node per operation (the root's box at dispatch).
+/// Tests every child box of one node per operation (2, 4 or 8; the root's box at dispatch).
 class BoxUnit final : public PipelineUnit, public BoxUnitIf {
  public:
   sc_core::sc_export<BoxUnitIf> target;

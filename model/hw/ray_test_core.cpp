@@ -60,7 +60,7 @@ RayTestCore::RayTestCore(sc_core::sc_module_name name, uint32_t index, const HwC
   declare_stat("rays", "rays", "rays finished on this core", c.rays);
   declare_stat("slot_cycles", "slot-cycles", "cycles its slots held a ray (dispatch to result), summed",
                c.slot_cycles);
-  declare_stat("node_fetches", "reads", "node reads (each tests both child boxes)", c.node_fetches);
+  declare_stat("node_fetches", "reads", "node reads (each tests every child box: 2, 4 or 8)", c.node_fetches);
   declare_stat("leaf_fetches", "reads", "leaf reads (a leaf's triangles in one read)", c.leaf_fetches);
   declare_stat("refill_reads", "reads", "traversal stack refills from the spill area", c.refill_reads);
   declare_stat("memory_wait_cycles", "slot-cycles", "cycles node and leaf reads waited for their data",

@@ -46,8 +46,8 @@
 
 namespace vbsim::hw {
 
-/// The box unit: the root's box of a ray at dispatch, then both child boxes of
-/// each node the ray's slot fetches.
+/// The box unit: the root's box of a ray at dispatch, then every child box (2,
+/// 4 or 8: bvh.width) of each node the ray's slot fetches.
 class BoxUnitIf : public virtual sc_core::sc_interface {
  public:
   virtual BoxAnswer test_boxes(const BoxOp& op) = 0;
