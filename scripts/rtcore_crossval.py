@@ -196,6 +196,19 @@ def row(name, bound, args, rt, vb, n):
     }
 
 
+def controller_text():
+    """The rtcore preset's controller, in words."""
+    with open(os.path.join(ROOT, "model", "hw", "presets", "rtcore.json")) as f:
+        c = json.load(f)["controller"]
+    by = {k: v for k, v in c.get("by_step", {}).items()}
+    take = ", ".join(f"a {k} step's end {v.get('issue_interval', c['issue_interval'])}" for k, v in by.items())
+    return (f"one controller taking a step's end every {c['issue_interval']} cycle(s)"
+            + (f" ({take})" if take else "") + f" and {c['latency']} cycles of hops a step")
+
+
+CONTROLLER_TEXT = controller_text()
+
+
 def explain(r, tree):
     """What the measured counts say about the residual, vbsim running over `tree` (TREES' name)."""
     lp_units, hp_units = (int(x) for x in r["args"].split()[5:7])
@@ -221,14 +234,16 @@ def explain(r, tree):
                      f"a DRAM read of 321 cycles (64 bytes x 5 + 1); rtcore {r['rtcore_l1_misses_per_ray']:.2f} "
                      "objects a ray, each of 8 to 36 bytes (40 to 180 cycles), fetched one by one")
     else:
-        steps = r["rtcore_nodes_per_ray"] + r["rtcore_triangles_per_ray"]
-        extra = (r["rtcore_mean_latency"] - r["vbsim_mean_latency"]) / steps
-        slower = "rtcore" if extra > 0 else "vbsim"
-        parts.append(f"no unit saturated: the traversal controllers bound both; a ray spends "
+        rt_steps = r["rtcore_nodes_per_ray"] + r["rtcore_triangles_per_ray"]
+        vb_steps = r["vbsim_box_ops_per_ray"] + r["vbsim_triangles_per_ray"]
+        rt_step, vb_step = r["rtcore_mean_latency"] / rt_steps, r["vbsim_mean_latency"] / vb_steps
+        parts.append(f"no unit saturated: each ray's time in its slot bounds both (32 slots); a ray spends "
                      f"{r['rtcore_mean_latency']:.0f} cycles in a slot in rtcore, {r['vbsim_mean_latency']:.0f} in "
-                     f"vbsim: {abs(extra):.1f} cycles a step (of {steps:.2f} a ray) more in {slower}, the difference "
-                     "between rtcore's traversal and intersection controllers, arbiter and FIFOs and the preset's "
-                     "one controller (a step every 2 cycles, 10 cycles a step)")
+                     f"vbsim, over {rt_steps:.2f} and {vb_steps:.2f} node and triangle steps: the steps alone "
+                     f"predict {vb_steps / rt_steps - 1:+.1%}, the time a step ({vb_step:.1f} cycles in vbsim, "
+                     f"{rt_step:.1f} in rtcore) {vb_step / rt_step - 1:+.1%}; the step's time is the units' latency "
+                     f"and the hops through rtcore's traversal and box or intersection controllers, arbiter, "
+                     f"FIFOs and caches, which the preset gives as {CONTROLLER_TEXT}")
     parts.append(f"(vbsim's tree, {tree}, needs {box:+.1%} node tests and "
                  f"{tri:+.1%} triangle tests a ray against rtcore's sweep-SAH tree)")
     return "; ".join(parts)

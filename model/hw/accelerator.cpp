@@ -37,6 +37,7 @@ nlohmann::json level_json(const LevelCounters& c) {
 void add(UnitCounters& sum, const UnitCounters& c) {
   sum.ops += c.ops;
   sum.wait_cycles += c.wait_cycles;
+  sum.busy_cycles += c.busy_cycles;
 }
 
 /// The counters of a core's unit: the built-in module's, or what the scheduler counted of its replacement.
@@ -347,8 +348,7 @@ HwCounters Accelerator::chip_counters() const {
     if (const BoxUnit* low = core.box_low_unit()) add(c.box_low, low->counters());
     add_unit(c.triangle, core.builtin_triangle(), k.replaced_units[CoreCounters::kTriangle]);
     add_unit(c.avoidance, core.builtin_avoidance(), k.replaced_units[CoreCounters::kAvoidance]);
-    c.controller.ops += k.controller.ops;
-    c.controller.wait_cycles += k.controller.wait_cycles;
+    add(c.controller, k.controller);
     for (int i = 0; i < kRayKindCount; ++i) c.avoidance_ops_by_kind[i] += k.avoidance_ops_by_kind[i];
     c.node_fetches += k.node_fetches;
     c.leaf_fetches += k.leaf_fetches;

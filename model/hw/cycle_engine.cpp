@@ -246,9 +246,12 @@ class Engine final : public CycleEngine, private SourceHost {
 
   /// Slot `id`'s next step, s.pending, completes at cycle `at` (after its
   /// core's traversal controller has taken it, when the cores have one).
-  void schedule_step(uint64_t at, uint32_t id) {
+  /// `ended`: the kind of step that has just ended (the controller may take
+  /// each kind with its own latency and issue interval, hw.controller.by_step).
+  void schedule_step(uint64_t at, uint32_t id, ControllerConfig::Step ended) {
     if (__builtin_expect(!controllers_.empty(), 0))
-      at = controllers_[slots_[id].core].issue(at, last_handled_) + cfg_.controller.latency;
+      at = controllers_[slots_[id].core].issue(at, last_handled_, cfg_.controller.step_interval(ended)) +
+           cfg_.controller.step_latency(ended);
     // The step's read looks up its first line's L1 and L2 tag sets when it is
     // handled, many events later: ask the host's caches for them now (no
     // effect on any result). The address by table, not by a branch on the
@@ -411,7 +414,7 @@ class Engine final : public CycleEngine, private SourceHost {
         trace_op(id, kBox, box);
       }
     }
-    schedule_step(box.done, id);
+    schedule_step(box.done, id, ControllerConfig::Start);
   }
 
   // ---- a slot's steps ----
@@ -475,7 +478,7 @@ class Engine final : public CycleEngine, private SourceHost {
       trace_step(id, "node", asked, box.done, asked, ready);
       trace_op(id, kBox, box);
     }
-    schedule_step(box.done, id);
+    schedule_step(box.done, id, ControllerConfig::Node);
   }
 
   /// Triangle `index` of slot `id`'s leaf through the tester (and the
@@ -523,7 +526,7 @@ class Engine final : public CycleEngine, private SourceHost {
     }
     if (__builtin_expect(tracing_, 0)) trace_step(id, "leaf", asked, end, asked, ready);
     s.pending = s.stepper.leaf_done();
-    schedule_step(end, id);
+    schedule_step(end, id, ControllerConfig::Leaf);
   }
 
   /// Per-triangle fetch: the leaf's triangle s.leaf_next has arrived. Its test
@@ -540,7 +543,7 @@ class Engine final : public CycleEngine, private SourceHost {
     if (!out.stop && ++s.leaf_next < s.pending.count) return events_.schedule(end + cfg_.triangle_fetch_cycles, id);
     s.leaf_next = 0;
     s.pending = s.stepper.leaf_done();
-    schedule_step(end, id);
+    schedule_step(end, id, ControllerConfig::Leaf);
   }
 
   __attribute__((always_inline)) void refill_arrived(Slot& s, const CoreBinding& core, uint32_t id, uint64_t asked, uint64_t ready) {
@@ -549,7 +552,7 @@ class Engine final : public CycleEngine, private SourceHost {
     cc.refill_wait_cycles += ready - asked;
     if (__builtin_expect(tracing_, 0)) trace_step(id, "refill", asked, ready, asked, ready);
     s.pending = s.stepper.refilled();
-    schedule_step(ready, id);
+    schedule_step(ready, id, ControllerConfig::Refill);
   }
 
   /// The memory step of cycle `due`, which no event of that cycle has come before.

@@ -102,6 +102,15 @@ void read_memory(Fields& parent, MemoryConfig& m) {
   check_cache(parent.file(), field + ".l2", m.l2);
 }
 
+nlohmann::json controller_json(const ControllerConfig& c) {
+  nlohmann::json j = {{"count", c.count}, {"latency", c.latency}, {"issue_interval", c.issue_interval}};
+  for (int k = 0; k < ControllerConfig::kSteps; ++k)
+    if (c.by_step[k].set)
+      j["by_step"][controller_step_name(static_cast<ControllerConfig::Step>(k))] = {
+          {"latency", c.by_step[k].latency}, {"issue_interval", c.by_step[k].issue_interval}};
+  return j;
+}
+
 bool parse_dispatch(const std::string& s, DispatchPolicy& out) {
   if (s == "round-robin") out = DispatchPolicy::RoundRobin;
   else if (s == "least-loaded") out = DispatchPolicy::LeastLoaded;
@@ -224,6 +233,20 @@ void apply_hw_config(const nlohmann::json& j, const std::string& file, HwConfig&
     fc.integer("count", cfg.controller.count, 0, 64);
     fc.integer("latency", cfg.controller.latency, 0, 100000);
     fc.integer("issue_interval", cfg.controller.issue_interval, 1, 100000);
+    if (const auto* b = fc.get("by_step")) {
+      Fields fb(*b, file, "hw.controller.by_step");
+      for (int k = 0; k < ControllerConfig::kSteps; ++k) {
+        const auto step = static_cast<ControllerConfig::Step>(k);
+        const auto* t = fb.get(controller_step_name(step));
+        if (!t) continue;
+        const std::string where = std::string("hw.controller.by_step.") + controller_step_name(step);
+        Fields ft(*t, file, where.c_str());
+        ControllerStepTiming& timing = cfg.controller.by_step[k];
+        timing = {true, cfg.controller.latency, cfg.controller.issue_interval};
+        ft.integer("latency", timing.latency, 0, 100000);
+        ft.integer("issue_interval", timing.issue_interval, 1, 100000);
+      }
+    }
   }
   read_memory(f, cfg.memory);
   if (const auto* s = f.get("sim")) {
@@ -280,6 +303,16 @@ nlohmann::json shader_config_json(const ShaderConfig& s) {
   return j;
 }
 
+const char* controller_step_name(ControllerConfig::Step k) {
+  switch (k) {
+    case ControllerConfig::Start: return "start";
+    case ControllerConfig::Node: return "node";
+    case ControllerConfig::Leaf: return "leaf";
+    case ControllerConfig::Refill: return "refill";
+    default: return "?";
+  }
+}
+
 nlohmann::json hw_config_json(const HwConfig& c) {
   const auto unit = [](const UnitConfig& u) {
     return nlohmann::json{{"count", u.count}, {"latency", u.latency}, {"issue_interval", u.issue_interval}};
@@ -324,10 +357,7 @@ nlohmann::json hw_config_json(const HwConfig& c) {
           {"pop_culling", c.pop_culling},
           {"triangle_fetch", c.per_triangle_fetch ? "triangle" : "leaf"},
           {"triangle_fetch_cycles", c.triangle_fetch_cycles},
-          {"controller",
-           {{"count", c.controller.count},
-            {"latency", c.controller.latency},
-            {"issue_interval", c.controller.issue_interval}}},
+          {"controller", controller_json(c.controller)},
           {"memory",
            {{"ideal", m.ideal},
             {"ideal_latency", m.ideal_latency},

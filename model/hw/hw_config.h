@@ -83,11 +83,32 @@ nlohmann::json shader_config_json(const ShaderConfig& s);
 /// core, each taking a step every `issue_interval` cycles, a step leaving
 /// `latency` cycles after one takes it; count 0 (the default): none, a step
 /// follows the previous one at once (docs/hw-model.md, "Timing of each step").
+/// A step kind's own timing at the controller.
+struct ControllerStepTiming {
+  bool set = false;  ///< false: the controller's latency and issue interval
+  uint32_t latency = 0;
+  uint32_t issue_interval = 1;
+  bool operator==(const ControllerStepTiming& o) const {
+    return set == o.set && (!set || (latency == o.latency && issue_interval == o.issue_interval));
+  }
+};
+
 struct ControllerConfig {
   uint32_t count = 0;
   uint32_t latency = 0;
   uint32_t issue_interval = 1;
+  /// The kind of step that has ended and passes the controller: the ray's
+  /// start (dispatch and root box), a node's box test, a leaf's triangles, a
+  /// stack refill. Each may take its own latency and issue interval (a
+  /// controller that spends more cycles on a triangle's result than on a box
+  /// test's, as rtcore-systemc's traversal controller does); unset ones take
+  /// the controller's.
+  enum Step : uint8_t { Start, Node, Leaf, Refill, kSteps };
+  ControllerStepTiming by_step[kSteps];
+  uint32_t step_latency(Step k) const { return by_step[k].set ? by_step[k].latency : latency; }
+  uint32_t step_interval(Step k) const { return by_step[k].set ? by_step[k].issue_interval : issue_interval; }
 };
+const char* controller_step_name(ControllerConfig::Step k);  ///< "start", "node", "leaf", "refill"
 
 enum class DispatchPolicy { RoundRobin, LeastLoaded };
 const char* dispatch_policy_name(DispatchPolicy p);

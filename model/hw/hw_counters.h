@@ -14,6 +14,10 @@ namespace vbsim::hw {
 struct UnitCounters {
   uint64_t ops = 0;          ///< operations issued (all cores)
   uint64_t wait_cycles = 0;  ///< cycles operations waited for a free pipeline ("pipeline full")
+  /// Issue cycles held by operations of their own interval (UnitPipelines'
+  /// three-argument issue: the controller); 0 for units whose every operation
+  /// holds the configured interval (then: ops x issue_interval).
+  uint64_t busy_cycles = 0;
   /// Chip-wide totals: a core's unit of this kind is a replacement, whose
   /// pipelines are its own (its utilisation is not known).
   bool replaced = false;

@@ -10,7 +10,8 @@ double per(double num, double den) { return den > 0 ? num / den : 0.0; }
 
 /// Fraction of the issue slots of all `u` pipelines of all cores that were used.
 double utilisation(const UnitCounters& c, const UnitConfig& u, const HwConfig& cfg, uint64_t cycles) {
-  return per(static_cast<double>(c.ops) * u.issue_interval, static_cast<double>(cycles) * u.count * cfg.cores);
+  const double busy = c.busy_cycles ? static_cast<double>(c.busy_cycles) : static_cast<double>(c.ops) * u.issue_interval;
+  return per(busy, static_cast<double>(cycles) * u.count * cfg.cores);
 }
 
 /// The utilisation, or null for a replaced unit (its pipelines are its own).

@@ -22,13 +22,13 @@ UnitPipelines::UnitPipelines(const UnitConfig& c, UnitCounters& totals, std::str
       ring_(count_ * kInitialWords),
       totals_(&totals), owner_(std::move(owner)) {}
 
-uint64_t UnitPipelines::issue_general(uint64_t ready) {
+uint64_t UnitPipelines::issue_general(uint64_t ready, uint32_t interval) {
   uint64_t best = ~uint64_t{0};
   uint32_t best_pipe = 0;
   for (uint32_t p = 0; p < count_; ++p) {
     // The first c >= ready with [c, c + interval) clear in pipeline p.
     uint64_t c = ready;
-    for (uint64_t k = 0; k < interval_;) {
+    for (uint64_t k = 0; k < interval;) {
       if (taken(p, c + k)) {
         c += k + 1;  // no fit starts at or before the taken cycle
         k = 0;
@@ -38,7 +38,7 @@ uint64_t UnitPipelines::issue_general(uint64_t ready) {
     }
     if (c < best) best = c, best_pipe = p;
   }
-  for (uint64_t k = 0; k < interval_; ++k) take(best_pipe, best + k);
+  for (uint64_t k = 0; k < interval; ++k) take(best_pipe, best + k);
   return best;
 }
 

@@ -44,9 +44,20 @@ class UnitPipelines {
   /// call to the next, and ready >= now.
   uint64_t issue(uint64_t ready, uint64_t now) {
     if (now / kWordBits != now_block_) move_to(now / kWordBits);
-    const uint64_t at = count_ == 1 && interval_ == 1 ? issue_single(ready) : issue_general(ready);
+    const uint64_t at = count_ == 1 && interval_ == 1 ? issue_single(ready) : issue_general(ready, interval_);
     ++totals_->ops;
     totals_->wait_cycles += at - ready;
+    return at;
+  }
+  /// The same for an operation that holds its pipeline `interval` (>= 1) cycles
+  /// instead of the configured issue interval (a controller's step of a kind
+  /// with its own, hw.controller.by_step); these are counted in busy_cycles.
+  uint64_t issue(uint64_t ready, uint64_t now, uint32_t interval) {
+    if (now / kWordBits != now_block_) move_to(now / kWordBits);
+    const uint64_t at = count_ == 1 && interval == 1 ? issue_single(ready) : issue_general(ready, interval);
+    ++totals_->ops;
+    totals_->wait_cycles += at - ready;
+    totals_->busy_cycles += interval;
     return at;
   }
   uint32_t latency() const { return latency_; }
@@ -65,7 +76,7 @@ class UnitPipelines {
       return at;
     }
   }
-  uint64_t issue_general(uint64_t ready);
+  uint64_t issue_general(uint64_t ready, uint32_t interval);
 
   /// Pipeline `pipe`'s word for `block`, a block from the current one on (the
   /// ring spans it: grown when needed).

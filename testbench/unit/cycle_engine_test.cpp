@@ -226,6 +226,50 @@ TEST_CASE("the traversal controller's issue interval bounds a core's steps", "[c
   CHECK(two <= I * rays + 10);
 }
 
+TEST_CASE("the controller takes each kind of step with its own latency and issue interval, by hand",
+          "[cycle][controller]") {
+  // Ray A of the three-node case: its start, two node steps and a leaf pass
+  // the controller; each with the latency of its kind.
+  const ThreeFloors f;
+  const uint32_t M = 3, Lb = 5, Lt = 11, La = 7, Ls = 4, Ln = 1, Ll = 9;
+  HwConfig cfg = one_slot(M, Lb, Lt, La);
+  cfg.controller.count = 1;
+  cfg.controller.latency = 100;  // the default of the kinds not set: none here
+  cfg.controller.by_step[ControllerConfig::Start] = {true, Ls, 1};
+  cfg.controller.by_step[ControllerConfig::Node] = {true, Ln, 1};
+  cfg.controller.by_step[ControllerConfig::Leaf] = {true, Ll, 1};
+  const Run run = run_rays({down_from(1, 1.0f)}, f.scene, f.bvh, ReplayOptions{}, cfg);
+  REQUIRE(run.rays.at(1).prim == 0);
+  const uint64_t latency_a = Lb + (M + Lb) + (M + Lb) + (M + Lt);
+  CHECK(run.rays.at(1).cycle == 1 + latency_a + Ls + 2 * Ln + Ll);
+  CHECK(run.result.counters.controller.busy_cycles == 4);
+
+  // Issue intervals: a root leaf of one floor, each ray a start and a leaf; with
+  // 32 slots the one controller is the bound, Is + Il cycles a ray.
+  const Scene scene = make_scene({floor_at(0)});
+  Bvh bvh;
+  bvh.tris.push_back({scene.triangles[0], 0});
+  bvh.root = {0, 1};
+  bvh.root_bounds = box_of(0, 0);
+  bvh.depth = 1;
+  const uint32_t Is = 2, Il = 5, rays = 60;
+  HwConfig bound = one_slot(1, 1, 1, 1);
+  bound.slots_per_core = 32;
+  bound.controller.count = 1;
+  bound.controller.by_step[ControllerConfig::Start] = {true, 0, Is};
+  bound.controller.by_step[ControllerConfig::Leaf] = {true, 0, Il};
+  std::vector<TraceRay> batch;
+  for (uint32_t i = 0; i < rays; ++i) batch.push_back(down_from(i, 1.0f));
+  const Run busy = run_rays(batch, scene, bvh, ReplayOptions{}, bound);
+  const uint64_t cycles = busy.result.counters.cycles;
+  CHECK(busy.result.counters.controller.busy_cycles == rays * (Is + Il));
+  CHECK(cycles >= (Is + Il) * (rays - 1));
+  CHECK(cycles <= (Is + Il) * rays + 10);
+  const double util = busy.result.hw["units"]["controller"]["utilisation"].get<double>();
+  CHECK(util == Approx(double(rays * (Is + Il)) / double(cycles)));
+  CHECK(util > 0.9);
+}
+
 TEST_CASE("without the root box test a ray starts with the root node's fetch: the same hits, the work by hand",
           "[cycle][root-box]") {
   // 2,000 random bunny rays (the bench's), many missing the bunny. Without the

@@ -54,6 +54,26 @@ TEST_CASE("the shading latency by the parent's kind applies where given and roun
   CHECK(hw_config_json(load_preset("small", "t"))["shader"] == nlohmann::json{{"latency_cycles", 200}});
 }
 
+TEST_CASE("the controller's timing by kind of step applies where given and round-trips", "[hwconfig]") {
+  HwConfig c;
+  apply_hw_config(nlohmann::json::parse(R"({"controller": {"count": 1, "latency": 10, "issue_interval": 2,
+                                           "by_step": {"node": {"issue_interval": 1}, "leaf": {"latency": 4}}}})"),
+                  "f.json", c);
+  CHECK(c.controller.step_interval(ControllerConfig::Node) == 1);
+  CHECK(c.controller.step_latency(ControllerConfig::Node) == 10);  // unset: the controller's
+  CHECK(c.controller.step_interval(ControllerConfig::Leaf) == 2);
+  CHECK(c.controller.step_latency(ControllerConfig::Leaf) == 4);
+  CHECK(c.controller.step_latency(ControllerConfig::Start) == 10);
+  CHECK(c.controller.step_interval(ControllerConfig::Refill) == 2);
+  const nlohmann::json j = hw_config_json(c);
+  CHECK(j["controller"]["by_step"] == nlohmann::json::parse(R"({"node": {"latency": 10, "issue_interval": 1},
+                                                               "leaf": {"latency": 4, "issue_interval": 2}})"));
+  HwConfig back;
+  apply_hw_config(j, "test", back);
+  CHECK(hw_config_json(back) == j);
+  CHECK_FALSE(hw_config_json(load_preset("small", "t"))["controller"].contains("by_step"));
+}
+
 TEST_CASE("bad hw values are errors naming the field", "[hwconfig]") {
   const std::pair<const char*, const char*> cases[] = {
       {R"({"cores": 0})", "field 'hw.cores'"},
@@ -69,6 +89,9 @@ TEST_CASE("bad hw values are errors naming the field", "[hwconfig]") {
       {R"({"box_low": {"latency": 0}})", "field 'hw.box_low.latency'"},
       {R"({"triangle_fetch": "each"})", "field 'hw.triangle_fetch'"},
       {R"({"pop_culling": 1})", "field 'hw.pop_culling'"},
+      {R"({"controller": {"by_step": {"box": {"latency": 1}}}})", "field 'hw.controller.by_step.box'"},
+      {R"({"controller": {"by_step": {"node": {"issue_interval": 0}}}})",
+       "field 'hw.controller.by_step.node.issue_interval'"},
       {R"({"shader": {"latency_by_kind": {"diffuse": -1}}})", "field 'hw.shader.latency_by_kind.diffuse'"},
       {R"({"shader": {"latency_by_kind": [1]}})", "field 'hw.shader.latency_by_kind'"},
       {R"({"triangle": {"count": 0}})", "field 'hw.triangle.count'"},
