@@ -182,7 +182,7 @@ def row(name, bound, args, rt, vb, n):
     vb_low = hw["units"]["box_low"]["ops"] if "box_low" in hw["units"] else 0
     port = hw["memory"]["port"]
     return {
-        "regime": name, "bound": bound, "args": " ".join(map(str, args)),
+        "regime": name, "bound": bound, "args": " ".join(map(str, args)), "rays": n,
         "rtcore_cycles_per_ray": rt_cpr, "vbsim_cycles_per_ray": vb_cpr,
         "difference": vb_cpr / rt_cpr - 1, "latency_correlation": pearson(rt_lat, vb_lat),
         "rtcore_mean_latency": statistics.fmean(rt_lat), "vbsim_mean_latency": statistics.fmean(vb_lat),
@@ -192,6 +192,9 @@ def row(name, bound, args, rt, vb, n):
         "rtcore_l1_misses": rt_misses, "vbsim_l1_misses": port["l1"]["misses"], "vbsim_dram_reads": port["dram"]["reads"],
         "rtcore_l1_misses_per_ray": rt_misses / n, "vbsim_l1_misses_per_ray": port["l1"]["misses"] / n,
         "rtcore_lp_per_ray": c.get("lp", 0) / n, "rtcore_hp_per_ray": c.get("hp", 0) / n,
+        # rtcore's misses by cache: low-precision nodes, other nodes, triangles.
+        "rtcore_misses_by_cache": {cache: sum(v for k, v in c.items() if k.endswith(".miss") and cache in k)
+                                   for cache in ("l1c_lp", "l1c_hp", "ist_l1c")},
         "rtcore_busy": rt_busy, "vbsim_busy": vb_busy,
     }
 
@@ -230,9 +233,20 @@ def explain(r, tree):
                      f"{r['vbsim_box_ops_per_ray'] - vb_pool:.2f}, rtcore {r['rtcore_nodes_per_ray'] - rt_pool:.2f}); "
                      f"that pool's work alone predicts {predicted:+.1%}, measured {r['difference']:+.1%}")
     elif r["rtcore_l1_misses_per_ray"] > 1:
+        m = r["rtcore_misses_by_cache"]
+        # rtcore's objects (bbox_ctrl, ist_ctrl): a node whose two children are low precision 40 bytes, another
+        # 52 or 64, a triangle 36; a miss is a DRAM read of 5 cycles a byte.
+        low = (m["l1c_lp"] * 40 + m["l1c_hp"] * 52 + m["ist_l1c"] * 36) * 5 / r["rays"]
+        high = (m["l1c_lp"] * 40 + m["l1c_hp"] * 64 + m["ist_l1c"] * 36) * 5 / r["rays"]
+        vb = r["vbsim_l1_misses_per_ray"] * 321
         parts.append(f"memory-bound: vbsim misses {r['vbsim_l1_misses_per_ray']:.2f} 64-byte lines a ray, each "
-                     f"a DRAM read of 321 cycles (64 bytes x 5 + 1); rtcore {r['rtcore_l1_misses_per_ray']:.2f} "
-                     "objects a ray, each of 8 to 36 bytes (40 to 180 cycles), fetched one by one")
+                     f"a DRAM read of 321 cycles (64 bytes x 5 + 1): {vb:.0f} cycles of misses a ray; rtcore "
+                     f"{r['rtcore_l1_misses_per_ray']:.2f} objects a ray in its three object caches (low-precision "
+                     f"nodes of 40 bytes, other nodes of 52 or 64, triangles of 36: "
+                     f"{m['l1c_lp'] / r['rays']:.2f}, {m['l1c_hp'] / r['rays']:.2f} and "
+                     f"{m['ist_l1c'] / r['rays']:.2f} a ray), each a read of 5 cycles a byte: {low:.0f} to "
+                     f"{high:.0f} cycles a ray; the misses' cycles alone differ by {vb / high - 1:+.0%} to "
+                     f"{vb / low - 1:+.0%}")
     else:
         rt_steps = r["rtcore_nodes_per_ray"] + r["rtcore_triangles_per_ray"]
         vb_steps = r["vbsim_box_ops_per_ray"] + r["vbsim_triangles_per_ray"]

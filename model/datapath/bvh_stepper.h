@@ -41,6 +41,10 @@
 //   template <int W> unsigned wide_node_boxes(const Ray&, const RayBoxTester& latched,
 //                       uint32_t node, const WideBvhNode<W>&, float tmax, float* entry)
 //       the same for every used slot of a wide node (entry[c] for slot c)
+//   unsigned narrow_node_boxes(const Ray&, const RayBoxTester& latched, const NarrowBoxTester&,
+//                       uint32_t node, const BvhNode&, float tmax, float& entry0, float& entry1)
+//       a node Bvh::low_precision_node marks, in the narrow format
+//       (Bvh::narrow_mantissa_bits >= 0: rtcore-systemc's low-precision test)
 //   bool triangle(const Ray&, const Tester& latched, uint32_t index,
 //                 const BvhTriangle&, float tmax, Hit&)      (the tester contract)
 //   AvoidanceDecision avoidance(const AvoidanceConfig&, const Ray&, uint32_t index,
@@ -57,6 +61,7 @@
 #include "datapath/candidate_filter.h"
 #include "datapath/closest_hit.h"
 #include "datapath/hit.h"
+#include "datapath/narrow_box_tester.h"
 #include "datapath/ray.h"
 #include "datapath/ray_box_tester.h"
 #include "scene/bvh.h"
@@ -91,6 +96,10 @@ struct BuiltinUnits {
   static unsigned wide_node_boxes(const Ray&, const RayBoxTester& latched, uint32_t, const WideBvhNode<W>& n,
                                   float tmax, float* entry) {
     return latched.hits(n, tmax, entry);
+  }
+  static unsigned narrow_node_boxes(const Ray&, const RayBoxTester&, const NarrowBoxTester& narrow, uint32_t,
+                                    const BvhNode& n, float tmax, float& entry0, float& entry1) {
+    return narrow.hits(n, tmax, entry0, entry1);
   }
   template <class Tester>
   static bool triangle(const Ray&, const Tester& latched, uint32_t, const BvhTriangle& bt, float tmax, Hit& h) {
@@ -128,6 +137,8 @@ class BvhStepper {
     if (bvh_->tris.empty()) return done();  // an empty scene: nothing is read or counted
     tester_.emplace(ray_);
     box_.emplace(ray_);
+    if (__builtin_expect(bvh_->narrow_mantissa_bits >= 0 && !bvh_->low_precision_node.empty(), 0))
+      narrow_.emplace(ray_, bvh_->narrow_mantissa_bits);
     if (!root_box_test_) return visit(bvh_->root);
     ++tc.box_tests;
     if (!units.root_box(ray_, *box_, bvh_->root_bounds, cull_limit(tmax_))) return done();
@@ -142,7 +153,11 @@ class BvhStepper {
     ++tc_->node_visits;
     tc_->box_tests += 2;
     float t0, t1;
-    const unsigned hit = units.node_boxes(ray_, *box_, current_.index, n, cull_limit(tmax_), t0, t1) & 3u;
+    const unsigned hit =
+        (__builtin_expect(narrow_.has_value(), 0) && bvh_->low_precision_node[current_.index]
+             ? units.narrow_node_boxes(ray_, *box_, *narrow_, current_.index, n, cull_limit(tmax_), t0, t1)
+             : units.node_boxes(ray_, *box_, current_.index, n, cull_limit(tmax_), t0, t1)) &
+        3u;
     if (hit == 0u) return pop();
     // One or both children met: descend into the nearer (child 0 on a tie),
     // push the farther when both are met. Written without branches on the
@@ -305,6 +320,7 @@ class BvhStepper {
   uint64_t rejected_ = 0, refills_ = 0;
   Ray ray_;
   std::optional<Tester> tester_;
+  std::optional<NarrowBoxTester> narrow_;  ///< with narrow low-precision nodes (begin() latches it)
   // Last: a step touches only its top, the rest stays cold. One spare entry:
   // node_step writes the entry above the top even when it does not push.
   Entry stack_[kTraversalStackDepth + 1];

@@ -12,6 +12,7 @@
 
 #include "datapath/candidate_filter.h"
 #include "datapath/hit.h"
+#include "datapath/narrow_box_tester.h"
 #include "datapath/ray.h"
 #include "datapath/ray_box_tester.h"
 #include "datapath/search_rules.h"
@@ -20,20 +21,38 @@
 
 namespace vbsim {
 
-/// Closest accepted hit of `ray` (any accepted hit when `any_hit`); miss: prim -1;
-/// at equal distances the lowest primitive id (ties, above).
-/// Each interior node is one fetch that tests both children's boxes; the nearer
+/// A binary node's two box tests: float32 (RayBoxTester) for every node.
+struct FloatNodeBoxes {
+  explicit FloatNodeBoxes(const Bvh&, const Ray&) {}
+  unsigned hits(const RayBoxTester& box, uint32_t, const BvhNode& n, float tmax, float& t0, float& t1) const {
+    return box.hits(n, tmax, t0, t1);
+  }
+};
+
+/// ... and with the nodes Bvh::low_precision_node marks tested in the narrow
+/// format (Bvh::narrow_mantissa_bits >= 0; datapath/narrow_box_tester.h).
+struct NarrowNodeBoxes {
+  NarrowBoxTester narrow;
+  const uint8_t* marked;
+  NarrowNodeBoxes(const Bvh& bvh, const Ray& ray)
+      : narrow(ray, bvh.narrow_mantissa_bits), marked(bvh.low_precision_node.data()) {}
+  unsigned hits(const RayBoxTester& box, uint32_t index, const BvhNode& n, float tmax, float& t0, float& t1) const {
+    return marked[index] ? narrow.hits(n, tmax, t0, t1) : box.hits(n, tmax, t0, t1);
+  }
+};
+
+/// The binary search with node box tests `Boxes` (closest_hit below): each
+/// interior node is one fetch that tests both children's boxes; the nearer
 /// child is visited first and the farther is skipped later if a hit has come
 /// closer than its entry.
-template <class Tester>
-Hit closest_hit(const Bvh& bvh, const Ray& ray, const CandidateFilter& filter,
-                CandidateCounters& cc, TraversalCounters& tc, bool any_hit = false) {
-  if (bvh.width == 4) return wide_closest_hit<4, Tester>(bvh, ray, filter, cc, tc, any_hit);
-  if (bvh.width == 8) return wide_closest_hit<8, Tester>(bvh, ray, filter, cc, tc, any_hit);
+template <class Tester, class Boxes>
+Hit binary_closest_hit(const Bvh& bvh, const Ray& ray, const CandidateFilter& filter, CandidateCounters& cc,
+                       TraversalCounters& tc, bool any_hit) {
   Hit best;
   if (bvh.tris.empty()) return best;  // an empty scene: no root to read
   const Tester tester(ray);
   const RayBoxTester box(ray);
+  const Boxes boxes(bvh, ray);
   float tmax = ray.tmax;
   struct Entry {  // trivial, so the stack is not cleared per ray
     uint32_t index, count;  // a BvhRef
@@ -60,7 +79,7 @@ Hit closest_hit(const Bvh& bvh, const Ray& ray, const CandidateFilter& filter,
       const BvhNode& n = nodes[ref.index];
       ++node_visits;
       float t0, t1;
-      const unsigned hit = box.hits(n, cull_limit(tmax), t0, t1);
+      const unsigned hit = boxes.hits(box, ref.index, n, cull_limit(tmax), t0, t1);
       if (hit != 0u) {
         // Descend into the nearer child met (child 0 on a tie) and write the
         // other to the stack, keeping it only when both were met. Selects, not
@@ -97,6 +116,18 @@ Hit closest_hit(const Bvh& bvh, const Ray& ray, const CandidateFilter& filter,
     } while (stack[sp].t > cull_limit(tmax));
     ref = BvhRef{stack[sp].index, stack[sp].count};
   }
+}
+
+/// Closest accepted hit of `ray` (any accepted hit when `any_hit`); miss: prim -1;
+/// at equal distances the lowest primitive id (ties, above).
+template <class Tester>
+Hit closest_hit(const Bvh& bvh, const Ray& ray, const CandidateFilter& filter,
+                CandidateCounters& cc, TraversalCounters& tc, bool any_hit = false) {
+  if (bvh.width == 4) return wide_closest_hit<4, Tester>(bvh, ray, filter, cc, tc, any_hit);
+  if (bvh.width == 8) return wide_closest_hit<8, Tester>(bvh, ray, filter, cc, tc, any_hit);
+  if (__builtin_expect(bvh.narrow_mantissa_bits >= 0 && !bvh.low_precision_node.empty(), 0))
+    return binary_closest_hit<Tester, NarrowNodeBoxes>(bvh, ray, filter, cc, tc, any_hit);
+  return binary_closest_hit<Tester, FloatNodeBoxes>(bvh, ray, filter, cc, tc, any_hit);
 }
 
 }  // namespace vbsim

@@ -26,7 +26,8 @@ BoxAnswer BoxUnit::compute(const BoxOp& op) {
   const RayBoxTester* box = op.latched;
   if (!box) box = &own.emplace(*op.ray);
   BoxAnswer a;
-  if (op.node_record) a.met = box->hits(*op.node_record, op.tmax, a.entry[0], a.entry[1]);
+  if (op.narrow && op.node_record) a.met = op.narrow->hits(*op.node_record, op.tmax, a.entry[0], a.entry[1]);
+  else if (op.node_record) a.met = box->hits(*op.node_record, op.tmax, a.entry[0], a.entry[1]);
   else if (op.node4_record) a.met = box->hits(*op.node4_record, op.tmax, a.entry);
   else if (op.node8_record) a.met = box->hits(*op.node8_record, op.tmax, a.entry);
   else a.met = box->hits(*op.root, op.tmax) ? 1u : 0u;

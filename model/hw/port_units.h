@@ -87,6 +87,18 @@ class PortUnits {
     return a.met & 3u;
   }
 
+  unsigned narrow_node_boxes(const Ray& ray, const RayBoxTester& latched, const NarrowBoxTester& narrow,
+                             uint32_t node, const BvhNode& n, float tmax, float& entry0, float& entry1) {
+    BoxOp op = box_op(ray, latched, tmax);
+    op.node = node;
+    op.node_record = &n;
+    op.narrow = &narrow;
+    const BoxAnswer a = box(op);
+    entry0 = a.entry[0];
+    entry1 = a.entry[1];
+    return a.met & 3u;
+  }
+
   template <int W>
   unsigned wide_node_boxes(const Ray& ray, const RayBoxTester& latched, uint32_t node, const WideBvhNode<W>& n,
                            float tmax, float* entry) {

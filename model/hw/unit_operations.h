@@ -14,6 +14,7 @@
 
 #include "datapath/avoidance_unit.h"
 #include "datapath/hit.h"
+#include "datapath/narrow_box_tester.h"
 #include "datapath/ray.h"
 #include "datapath/ray_box_tester.h"
 #include "datapath/triangle.h"
@@ -48,6 +49,10 @@ struct BoxOp {
   const BvhNode* node_record = nullptr;
   const BvhNode4* node4_record = nullptr;
   const BvhNode8* node8_record = nullptr;
+  /// With node_record: a node Bvh::low_precision_node marks, in a tree whose
+  /// marked nodes are tested in the narrow format (Bvh::narrow_mantissa_bits
+  /// >= 0): the ray's latched narrow test, which the answer must follow.
+  const NarrowBoxTester* narrow = nullptr;
   const Bounds3f* root = nullptr;
   const Ray* ray = nullptr;               ///< the ray as the slot holds it
   const RayBoxTester* latched = nullptr;  ///< the ray's latched box-test state (o, 1/d, tmin)

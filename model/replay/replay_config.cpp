@@ -72,6 +72,7 @@ void apply_replay_config(const nlohmann::json& j, const std::string& file, Repla
       fl.integer("mantissa_bits", mark.mantissa_bits);
       fl.number("t_trav_high", mark.t_trav_high);
       fl.number("t_trav_low", mark.t_trav_low);
+      fl.boolean("narrow_arithmetic", mark.narrow_arithmetic);
       if (opt.bvh.width != 2)
         fail(file, "bvh.low_precision", fmt::format("takes bvh.width 2 (nodes of two precisions are binary), got {}",
                                                     opt.bvh.width));

@@ -178,7 +178,8 @@ nlohmann::json bvh_options_json(const BvhBuildOptions& b) {
   if (b.low_precision.enabled)
     j["low_precision"] = {{"mantissa_bits", b.low_precision.mantissa_bits},
                           {"t_trav_high", b.low_precision.t_trav_high},
-                          {"t_trav_low", b.low_precision.t_trav_low}};
+                          {"t_trav_low", b.low_precision.t_trav_low},
+                          {"narrow_arithmetic", b.low_precision.narrow_arithmetic}};
   return j;
 }
 

@@ -102,9 +102,15 @@ struct BvhPrecisionMarking {
   int mantissa_bits = 7;      ///< fraction bits a low-precision bound keeps (0..22; exponent: float32's)
   double t_trav_high = 0.5;   ///< SAH cost of a full-precision node test (a triangle test: 1)
   double t_trav_low = 0.47;   ///< SAH cost of a low-precision node test
+  /// A node whose children are both low precision is tested in the narrow
+  /// format itself, rounding widening the slabs (datapath/narrow_box_tester.h),
+  /// as rtcore-systemc's low-precision units do; false: in float32 on the
+  /// rounded boxes.
+  bool narrow_arithmetic = false;
   bool operator==(const BvhPrecisionMarking& o) const {
-    return enabled == o.enabled && (!enabled || (mantissa_bits == o.mantissa_bits &&
-                                                 t_trav_high == o.t_trav_high && t_trav_low == o.t_trav_low));
+    return enabled == o.enabled &&
+           (!enabled || (mantissa_bits == o.mantissa_bits && t_trav_high == o.t_trav_high &&
+                         t_trav_low == o.t_trav_low && narrow_arithmetic == o.narrow_arithmetic));
   }
 };
 
@@ -141,6 +147,9 @@ struct Bvh {
   /// 1 when both its children's boxes are low-precision (rounded outward in
   /// the record), so the low-precision box pool tests it; empty otherwise.
   std::vector<uint8_t> low_precision_node;
+  /// >= 0: the nodes low_precision_node marks are tested in the narrow format
+  /// of this many fraction bits (BvhPrecisionMarking::narrow_arithmetic); -1: in float32.
+  int narrow_mantissa_bits = -1;
   /// The node width traversal reads (BvhBuildOptions::width). At 4 (8) the
   /// binary `nodes` are still there (the oracle, the statistics and the
   /// converters read them) and `nodes4` (`nodes8`) holds the same tree

@@ -33,6 +33,7 @@ void mark_low_precision(Bvh& bvh, const BvhPrecisionMarking& m) {
   check_bvh_precision(m);
   const size_t n = bvh.nodes.size();
   bvh.low_precision_node.assign(n, 0);
+  bvh.narrow_mantissa_bits = m.narrow_arithmetic ? m.mantissa_bits : -1;
   if (n == 0) return;  // a root leaf or an empty scene: no node record to mark
   const int bits = m.mantissa_bits;
   // Bottom-up (pre-order: children after their parent, so backwards): the cost

@@ -136,6 +136,11 @@ struct ReferenceUnits {
     out.push_back({'b', node, tmax, 0, 0, 0});
     return BuiltinUnits::node_boxes(ray, l, node, n, tmax, e0, e1);
   }
+  unsigned narrow_node_boxes(const Ray& ray, const RayBoxTester& l, const NarrowBoxTester& nb, uint32_t node,
+                             const BvhNode& n, float tmax, float& e0, float& e1) {
+    out.push_back({'b', node, tmax, 0, 0, 0});
+    return BuiltinUnits::narrow_node_boxes(ray, l, nb, node, n, tmax, e0, e1);
+  }
   template <int W>
   unsigned wide_node_boxes(const Ray& ray, const RayBoxTester& l, uint32_t node, const WideBvhNode<W>& n, float tmax,
                            float* entry) {

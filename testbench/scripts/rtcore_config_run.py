@@ -32,7 +32,8 @@ class RtcoreConfigTest(unittest.TestCase):
         self.assertEqual(hw["box"], {"count": 4, "latency": 20, "issue_interval": 20})  # NUM_HP
         self.assertEqual(hw["box_low"], {"count": 4, "latency": 20, "issue_interval": 20})  # NUM_LP
         self.assertEqual(hw["triangle"], {"count": 1, "latency": 32, "issue_interval": 32})
-        self.assertEqual(out["bvh"], {"low_precision": {"mantissa_bits": 7, "t_trav_high": 0.5, "t_trav_low": 0.47}})
+        self.assertEqual(out["bvh"], {"low_precision": {"mantissa_bits": 7, "t_trav_high": 0.5, "t_trav_low": 0.47,
+                                                        "narrow_arithmetic": True}})
         self.assertIn("not modelled", r.stderr)  # what the mapping cannot express is named
 
     def test_arguments_in_tb_tops_order(self):

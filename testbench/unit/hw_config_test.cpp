@@ -170,7 +170,12 @@ TEST_CASE("a replay config's bvh build options are read, checked and echoed", "[
   apply_replay_config(nlohmann::json::parse(R"({"bvh": {"low_precision": {"t_trav_low": 0.4}}})"), "f", marked);
   CHECK(marked.bvh.low_precision == BvhPrecisionMarking{true, 7, 0.5, 0.4});
   const nlohmann::json lp = replay_config_json(marked)["bvh"]["low_precision"];
-  CHECK(lp == nlohmann::json::parse(R"({"mantissa_bits": 7, "t_trav_high": 0.5, "t_trav_low": 0.4})"));
+  CHECK(lp == nlohmann::json::parse(
+                  R"({"mantissa_bits": 7, "t_trav_high": 0.5, "t_trav_low": 0.4, "narrow_arithmetic": false})"));
+  ReplayOptions narrow;
+  apply_replay_config(nlohmann::json::parse(R"({"bvh": {"low_precision": {"narrow_arithmetic": true}}})"), "f", narrow);
+  CHECK(narrow.bvh.low_precision.narrow_arithmetic);
+  CHECK_FALSE(narrow.bvh == marked.bvh);
   ReplayOptions marked_back;
   apply_replay_config(nlohmann::json{{"bvh", replay_config_json(marked)["bvh"]}}, "f", marked_back);
   CHECK(marked_back.bvh == marked.bvh);
