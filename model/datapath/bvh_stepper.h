@@ -137,8 +137,8 @@ class BvhStepper {
     if (bvh_->tris.empty()) return done();  // an empty scene: nothing is read or counted
     tester_.emplace(ray_);
     box_.emplace(ray_);
-    if (__builtin_expect(bvh_->narrow_mantissa_bits >= 0 && !bvh_->low_precision_node.empty(), 0))
-      narrow_.emplace(ray_, bvh_->narrow_mantissa_bits);
+    narrow_on_ = bvh_->narrow_mantissa_bits >= 0 && !bvh_->low_precision_node.empty();
+    if (__builtin_expect(narrow_on_, 0)) narrow_.emplace(ray_, bvh_->narrow_mantissa_bits);
     if (!root_box_test_) return visit(bvh_->root);
     ++tc.box_tests;
     if (!units.root_box(ray_, *box_, bvh_->root_bounds, cull_limit(tmax_))) return done();
@@ -152,29 +152,10 @@ class BvhStepper {
     const BvhNode& n = bvh_->nodes[current_.index];
     ++tc_->node_visits;
     tc_->box_tests += 2;
+    if (__builtin_expect(narrow_on_, 0)) return narrow_node_step(units, n);
     float t0, t1;
-    const unsigned hit =
-        (__builtin_expect(narrow_.has_value(), 0) && bvh_->low_precision_node[current_.index]
-             ? units.narrow_node_boxes(ray_, *box_, *narrow_, current_.index, n, cull_limit(tmax_), t0, t1)
-             : units.node_boxes(ray_, *box_, current_.index, n, cull_limit(tmax_), t0, t1)) &
-        3u;
-    if (hit == 0u) return pop();
-    // One or both children met: descend into the nearer (child 0 on a tie),
-    // push the farther when both are met. Written without branches on the
-    // box results (the host mispredicts them about half the time): the
-    // farther entry is always written at the top and kept only when pushed.
-    const unsigned both = (hit >> 1) & hit & 1u;
-    const unsigned child1_nearer = t0 <= t1 ? 0u : 1u;
-    const unsigned first = (hit >> 1) & (((hit & 1u) ^ 1u) | child1_nearer);  // hit 2: 1; 1: 0; 3: by entry
-    const float entry[2] = {t0, t1};
-    const BvhRef near = n.child(static_cast<int>(first)), far = n.child(static_cast<int>(first ^ 1u));
-    stack_[sp_] = {far.index, far.count, entry[first ^ 1u]};
-    const unsigned full = onchip_ == onchip_depth_ ? 1u : 0u;
-    sp_ += static_cast<int>(both);
-    tc_->stack_pushes += both;
-    spills_ += both & full;                        // the oldest on-chip entry goes to memory
-    onchip_ += static_cast<int>(both & (full ^ 1u));
-    return visit(near);
+    const unsigned hit = units.node_boxes(ray_, *box_, current_.index, n, cull_limit(tmax_), t0, t1) & 3u;
+    return descend(n, hit, t0, t1);
   }
 
   /// Triangle `i` (an index in Bvh::tris inside the current leaf, taken in order).
@@ -267,6 +248,42 @@ class BvhStepper {
     return visit(n.child(order[0]));
   }
 
+  /// A binary node step's second half: descend into the nearer child met,
+  /// push the farther when both are (`hit`: bit c, child c met at entry t_c).
+  __attribute__((always_inline)) StepRequest descend(const BvhNode& n, unsigned hit, float t0, float t1) {
+    if (hit == 0u) return pop();
+    // One or both children met: descend into the nearer (child 0 on a tie),
+    // push the farther when both are met. Written without branches on the
+    // box results (the host mispredicts them about half the time): the
+    // farther entry is always written at the top and kept only when pushed.
+    const unsigned both = (hit >> 1) & hit & 1u;
+    const unsigned child1_nearer = t0 <= t1 ? 0u : 1u;
+    const unsigned first = (hit >> 1) & (((hit & 1u) ^ 1u) | child1_nearer);  // hit 2: 1; 1: 0; 3: by entry
+    const float entry[2] = {t0, t1};
+    const BvhRef near = n.child(static_cast<int>(first)), far = n.child(static_cast<int>(first ^ 1u));
+    stack_[sp_] = {far.index, far.count, entry[first ^ 1u]};
+    const unsigned full = onchip_ == onchip_depth_ ? 1u : 0u;
+    sp_ += static_cast<int>(both);
+    tc_->stack_pushes += both;
+    spills_ += both & full;                        // the oldest on-chip entry goes to memory
+    onchip_ += static_cast<int>(both & (full ^ 1u));
+    return visit(near);
+  }
+
+  /// A binary node step in a tree whose low-precision nodes are tested in the
+  /// narrow format (Bvh::narrow_mantissa_bits): out of line, so that the
+  /// float32 step stays as it is.
+  template <class Units>
+  __attribute__((noinline)) StepRequest narrow_node_step(Units& units, const BvhNode& n) {
+    float t0, t1;
+    const unsigned hit =
+        (bvh_->low_precision_node[current_.index]
+             ? units.narrow_node_boxes(ray_, *box_, *narrow_, current_.index, n, cull_limit(tmax_), t0, t1)
+             : units.node_boxes(ray_, *box_, current_.index, n, cull_limit(tmax_), t0, t1)) &
+        3u;
+    return descend(n, hit, t0, t1);
+  }
+
   /// Node: {Node, index, 0} (an interior node's count is 0); leaf: {Leaf, first, count}.
   StepRequest visit(BvhRef r) {
     current_ = r;
@@ -314,6 +331,7 @@ class BvhStepper {
   bool any_hit_ = false;
   bool root_box_test_ = true;
   bool pop_culling_ = true;
+  bool narrow_on_ = false;  ///< the tree's low-precision nodes are tested narrow (narrow_ holds the ray's test)
   const CandidateFilter* filter_;
   CandidateCounters* cc_ = nullptr;
   Hit best_;
