@@ -13,7 +13,6 @@ docs/hw-model.md, "Modelling rtcore-systemc", says how each part maps and what t
 mapping cannot express; those parts are also named on stderr.
 """
 import json
-import math
 import sys
 
 # rtcore-systemc's src/misc/params.hpp: tb_top's defaults and the object sizes.
@@ -21,11 +20,10 @@ NAMES = ["LP_L1C_ENTRIES", "HP_L1C_ENTRIES", "IST_L1C_ENTRIES", "T_TRAV_HIGH", "
          "NUM_LP", "NUM_HP", "NUM_IST"]
 DEFAULTS = [512, 512, 512, 0.5, 0.47, 4, 4, 1]
 KINDS = [int, int, int, float, float, int, int, int]
-LP_BYTES, HP_BYTES, IST_BYTES = 40, 64, 36  # bytes per entry of the three L1 caches
-LINE_BYTES = 64                              # vbsim's line (a node is one line)
+LP_BYTES, HP_BYTES, IST_BYTES = 40, 64, 36  # bytes of an object of the three caches (a node with one
+                                             # low-precision child is 52 in rtcore; 64 here)
 LP_LATENCY, IST_LATENCY = 20, 32             # box (both pools) and triangle latency, cycles
 MANTISSA_BITS = 7                            # rtcore's low-precision bounds (params.hpp: mantissa_width)
-MAX_WAYS = 65536                             # vbsim's largest associativity
 
 
 class UsageError(Exception):
@@ -49,10 +47,6 @@ def parse(argv):
 
 def config(a):
     """The hw object for rtcore's arguments `a` (a dict by NAMES)."""
-    cache_bytes = a["LP_L1C_ENTRIES"] * LP_BYTES + a["HP_L1C_ENTRIES"] * HP_BYTES + a["IST_L1C_ENTRIES"] * IST_BYTES
-    lines = max(1, math.ceil(cache_bytes / LINE_BYTES))
-    if lines > MAX_WAYS:
-        raise UsageError(f"the three L1 caches hold {cache_bytes} bytes, more than {MAX_WAYS} lines of {LINE_BYTES}")
     return {"hw": {
         "preset": "rtcore",
         # Two box pools: the full-precision one (NUM_HP) and the low-precision
@@ -60,8 +54,10 @@ def config(a):
         "box": {"count": a["NUM_HP"], "latency": LP_LATENCY, "issue_interval": LP_LATENCY},
         "box_low": {"count": a["NUM_LP"], "latency": LP_LATENCY, "issue_interval": LP_LATENCY},
         "triangle": {"count": a["NUM_IST"], "latency": IST_LATENCY, "issue_interval": IST_LATENCY},
-        # The three object caches as one fully associative L1 of the same bytes.
-        "memory": {"l1": {"size_bytes": lines * LINE_BYTES, "ways": "full"}},
+        # The three object caches, each of its own entries and object size.
+        "memory": {"objects": {"node_low": {"entries": a["LP_L1C_ENTRIES"], "bytes": LP_BYTES},
+                               "node": {"entries": a["HP_L1C_ENTRIES"], "bytes": HP_BYTES},
+                               "triangle": {"entries": a["IST_L1C_ENTRIES"], "bytes": IST_BYTES}}},
     },
         # rtcore's marking of nodes as low or high precision, by its two traversal costs.
         "bvh": {"low_precision": {"mantissa_bits": MANTISSA_BITS, "t_trav_high": a["T_TRAV_HIGH"],
@@ -70,7 +66,9 @@ def config(a):
 
 def not_modelled(a):
     """What of `a` the configuration cannot express."""
-    return ["the caches: rtcore's three object caches are one L1 of the same bytes in 64-byte lines"]
+    return ["a node with one low-precision child: rtcore reads 52 bytes, vbsim's object caches 64",
+            "rtcore's box and intersection controllers, arbiter and FIFOs: the preset's one controller's latency "
+            "stands for their hops"]
 
 
 def main(argv):

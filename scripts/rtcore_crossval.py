@@ -195,6 +195,11 @@ def row(name, bound, args, rt, vb, n):
         # rtcore's misses by cache: low-precision nodes, other nodes, triangles.
         "rtcore_misses_by_cache": {cache: sum(v for k, v in c.items() if k.endswith(".miss") and cache in k)
                                    for cache in ("l1c_lp", "l1c_hp", "ist_l1c")},
+        # vbsim's by its object caches (memory.objects), in rtcore's order.
+        "vbsim_misses_by_cache": {rt: port["objects"][vb]["misses"] for rt, vb in
+                                  (("l1c_lp", "node_low"), ("l1c_hp", "node"), ("ist_l1c", "triangle"))}
+        if "objects" in port else None,
+        "vbsim_dram_bytes": port["dram"].get("bytes", 0),
         "rtcore_busy": rt_busy, "vbsim_busy": vb_busy,
     }
 
@@ -238,15 +243,15 @@ def explain(r, tree):
         # 52 or 64, a triangle 36; a miss is a DRAM read of 5 cycles a byte.
         low = (m["l1c_lp"] * 40 + m["l1c_hp"] * 52 + m["ist_l1c"] * 36) * 5 / r["rays"]
         high = (m["l1c_lp"] * 40 + m["l1c_hp"] * 64 + m["ist_l1c"] * 36) * 5 / r["rays"]
-        vb = r["vbsim_l1_misses_per_ray"] * 321
-        parts.append(f"memory-bound: vbsim misses {r['vbsim_l1_misses_per_ray']:.2f} 64-byte lines a ray, each "
-                     f"a DRAM read of 321 cycles (64 bytes x 5 + 1): {vb:.0f} cycles of misses a ray; rtcore "
-                     f"{r['rtcore_l1_misses_per_ray']:.2f} objects a ray in its three object caches (low-precision "
-                     f"nodes of 40 bytes, other nodes of 52 or 64, triangles of 36: "
-                     f"{m['l1c_lp'] / r['rays']:.2f}, {m['l1c_hp'] / r['rays']:.2f} and "
-                     f"{m['ist_l1c'] / r['rays']:.2f} a ray), each a read of 5 cycles a byte: {low:.0f} to "
-                     f"{high:.0f} cycles a ray; the misses' cycles alone differ by {vb / high - 1:+.0%} to "
-                     f"{vb / low - 1:+.0%}")
+        v = r["vbsim_misses_by_cache"]
+        vb = (r["vbsim_dram_bytes"] * 5 + r["vbsim_l1_misses_per_ray"] * r["rays"]) / r["rays"]
+        per = lambda d: ", ".join(f"{d[k] / r['rays']:.2f}" for k in ("l1c_lp", "l1c_hp", "ist_l1c"))
+        parts.append(f"memory-bound: both miss objects of three caches (low-precision nodes of 40 bytes, other "
+                     f"nodes of 52 or 64 in rtcore and 64 in vbsim, triangles of 36), each a DRAM read of 5 cycles "
+                     f"a byte; misses a ray by cache, rtcore {per(m)}, vbsim {per(v) if v else 'n/a'} "
+                     f"({r['vbsim_l1_misses_per_ray'] / r['rtcore_l1_misses_per_ray'] - 1:+.1%} in all); "
+                     f"their DRAM cycles a ray, vbsim {vb:.0f}, rtcore {low:.0f} to {high:.0f} "
+                     f"({vb / high - 1:+.1%} to {vb / low - 1:+.1%})")
     else:
         rt_steps = r["rtcore_nodes_per_ray"] + r["rtcore_triangles_per_ray"]
         vb_steps = r["vbsim_box_ops_per_ray"] + r["vbsim_triangles_per_ray"]

@@ -87,15 +87,23 @@ Accelerator::Accelerator(sc_core::sc_module_name name, const HwConfig& config, c
     dispatcher_ = d.get();
     dispatcher_module_ = std::move(d);
   }
-  const bool caches = !config.memory.ideal;
+  const bool caches = config.memory.hierarchy();
   cores_.init(config.cores, [&](const char* n, size_t i) {
     return new RayTestCore(n, static_cast<uint32_t>(i), config, units, options.tester, options.method.avoidance,
                            avoidance_in_use_, caches);
   });
-  if (!caches) {
+  if (config.memory.ideal) {
     ideal_ = std::make_unique<IdealMemory>("memory", config.memory.ideal_latency);
     for (RayTestCore& c : cores_)
       if (!units.l1_cache) c.memory.bind(ideal_->target);
+  } else if (config.memory.objects.enabled) {
+    if (units.l2_cache || units.external_memory)
+      throw std::invalid_argument("memory.objects: object caches take no replaced L2 or external memory (they read DRAM themselves)");
+    for (RayTestCore& c : cores_) {
+      object_caches_.push_back(std::make_unique<ObjectCaches>(
+          (std::string("object_caches_") + std::to_string(object_caches_.size())).c_str(), config, bvh));
+      if (!units.l1_cache) c.memory.bind(object_caches_.back()->target);
+    }
   } else if (units.l2_cache) {
     if (units.external_memory)
       throw std::invalid_argument("external_memory: a replaced L2 has no memory socket (the memory behind it is its own)");
@@ -408,10 +416,51 @@ StatsSample Accelerator::statistics_sample(uint64_t cycle, bool latencies) const
   return s;
 }
 
+nlohmann::json Accelerator::object_caches_stats() const {
+  // Every core's object caches summed; "l1" their lookups together (one per read
+  // but the uncached), as the hierarchy's L1 reports, so that tools reading it work.
+  LevelCounters all;
+  nlohmann::json by_kind = nlohmann::json::object();
+  uint64_t reads = 0, bytes = 0, uncached = 0, dram_reads = 0, dram_bytes = 0;
+  for (int k = 0; k < ObjectCachesConfig::kKinds; ++k) {
+    ObjectCacheCounters sum;
+    for (const auto& o : object_caches_) {
+      const ObjectCacheCounters& c = o->counters(static_cast<ObjectCachesConfig::Kind>(k));
+      sum.lookups += c.lookups;
+      sum.hits += c.hits;
+      sum.misses += c.misses;
+      sum.misses_in_flight += c.misses_in_flight;
+      sum.dram_bytes += c.dram_bytes;
+    }
+    all.accesses += sum.lookups;
+    all.hits += sum.hits;
+    all.misses += sum.misses;
+    by_kind[object_cache_name(static_cast<ObjectCachesConfig::Kind>(k))] = {
+        {"lookups", sum.lookups},       {"hits", sum.hits},
+        {"misses", sum.misses},         {"misses_in_flight", sum.misses_in_flight},
+        {"dram_bytes", sum.dram_bytes}, {"hit_rate", ratio(sum.hits, sum.lookups)}};
+  }
+  for (const auto& o : object_caches_) {
+    reads += o->reads();
+    bytes += o->bytes();
+    uncached += o->uncached_reads();
+    dram_reads += o->dram_reads();
+    dram_bytes += o->dram_bytes();
+  }
+  return {{"model", "objects"},
+          {"reads", reads},
+          {"bytes", bytes},
+          {"uncached_reads", uncached},
+          {"objects", std::move(by_kind)},
+          {"l1", level_json(all)},
+          {"dram", {{"reads", dram_reads}, {"bytes", dram_bytes}}}};
+}
+
 nlohmann::json Accelerator::memory_stats() const {
   if (ideal_) {
     return {{"model", "ideal"}, {"latency", ideal_->latency()}, {"reads", ideal_->reads()}, {"bytes", ideal_->bytes()}};
   }
+  if (!object_caches_.empty()) return object_caches_stats();
   LevelCounters l1_sum;
   nlohmann::json per_core = nlohmann::json::array();
   uint64_t reads = 0, bytes = 0, first_now = 0, last_ready = 0;
@@ -571,10 +620,11 @@ nlohmann::json Accelerator::parameters() const {
           {"cores", config_.cores},
           {"slots_per_core", config_.slots_per_core},
           {"memory", m.ideal                ? "ideal"
+                     : m.objects.enabled  ? "object caches"
                      : l2_replacement_    ? "hierarchy, replaced L2"
                      : dram_              ? "hierarchy, built-in DRAM"
                                           : "hierarchy, external target"},
-          {"tlm", m.ideal ? "none" : tlm_style_name(m.tlm)},
+          {"tlm", m.hierarchy() ? tlm_style_name(m.tlm) : "none"},
           {"quantum_cycles", config_.quantum_cycles},
           {"method", replayer_.options().method.name()},
           {"tester", tester_name(replayer_.options().tester)}};

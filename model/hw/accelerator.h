@@ -52,6 +52,7 @@
 #include "hw/dram.h"
 #include "hw/hw_config.h"
 #include "hw/ideal_memory.h"
+#include "hw/object_caches.h"
 #include "hw/l2_cache.h"
 #include "hw/ray_feed.h"
 #include "hw/ray_source.h"
@@ -194,6 +195,8 @@ class Accelerator final : private AcceleratorChecks, public sc_core::sc_module, 
   DispatchIf* dispatcher_ = nullptr;
   sc_core::sc_vector<RayTestCore> cores_;
   std::unique_ptr<IdealMemory> ideal_;
+  std::vector<std::unique_ptr<ObjectCaches>> object_caches_;  ///< per core, with memory.objects
+  nlohmann::json object_caches_stats() const;
   std::unique_ptr<L2Cache> l2_;
   std::unique_ptr<sc_core::sc_module> l2_replacement_;  // a replacement L2 (then l2_ is null)
   std::unique_ptr<tlm::tlm_initiator_socket<>> memory_socket_;

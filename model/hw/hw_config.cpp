@@ -98,6 +98,23 @@ void read_memory(Fields& parent, MemoryConfig& m) {
   });
   f.integer("at_lookahead_cycles", m.at_lookahead_cycles, 1, 1000000);
   f.boolean("l2_lookups_in_time_order", m.l2_lookups_in_time_order);
+  if (const auto* o = f.get("objects")) {  // present: object caches (hw/object_caches.h)
+    Fields fo(*o, parent.file(), field + ".objects");
+    ObjectCachesConfig& oc = m.objects;
+    oc.enabled = true;
+    for (int k = 0; k < ObjectCachesConfig::kKinds; ++k) {
+      const auto kind = static_cast<ObjectCachesConfig::Kind>(k);
+      if (const auto* c = fo.get(object_cache_name(kind))) {
+        Fields fc(*c, parent.file(), field + ".objects." + object_cache_name(kind));
+        fc.integer("entries", oc.cache[k].entries, 0, 1u << 24);
+        fc.integer("bytes", oc.cache[k].bytes, 0, 1u << 16);
+      }
+    }
+    fo.integer("hit_latency", oc.hit_latency, 1, 100000);
+    fo.integer("port_cycles", oc.port_cycles, 1, 100000);
+    fo.integer("responses_per_cycle", oc.responses_per_cycle, 0, 1024);
+    if (m.ideal) fail(parent.file(), field + ".objects", "takes memory.ideal false (the object caches are a memory of their own)");
+  }
   check_cache(parent.file(), field + ".l1", m.l1);
   check_cache(parent.file(), field + ".l2", m.l2);
 }
@@ -328,7 +345,7 @@ nlohmann::json hw_config_json(const HwConfig& c) {
     return j;
   };
   const MemoryConfig& m = c.memory;
-  return {{"preset", c.preset},
+  nlohmann::json j = {{"preset", c.preset},
           {"clock_mhz", c.clock_mhz},
           {"cores", c.cores},
           {"slots_per_core", c.slots_per_core},
@@ -377,6 +394,16 @@ nlohmann::json hw_config_json(const HwConfig& c) {
             {"warmup_rays", c.warmup_rays},
             {"warmup_cycles", c.warmup_cycles},
             {"interval_cycles", c.interval_cycles}}}};
+  if (m.objects.enabled) {
+    nlohmann::json o = {{"hit_latency", m.objects.hit_latency},
+                        {"port_cycles", m.objects.port_cycles},
+                        {"responses_per_cycle", m.objects.responses_per_cycle}};
+    for (int k = 0; k < ObjectCachesConfig::kKinds; ++k)
+      o[object_cache_name(static_cast<ObjectCachesConfig::Kind>(k))] = {{"entries", m.objects.cache[k].entries},
+                                                                          {"bytes", m.objects.cache[k].bytes}};
+    j["memory"]["objects"] = std::move(o);
+  }
+  return j;
 }
 
 }  // namespace vbsim::hw

@@ -24,6 +24,10 @@ OpCounts shared_over(const OpCounts& c, uint32_t interval) {
 
 double cache_bits(const CacheConfig& c) { return 8.0 * c.size_bytes; }
 
+/// Bytes of one object cache (memory.objects): entries x object bytes (a
+/// cache whose objects are the reads' own priced at 64 bytes an entry).
+double object_cache_bytes(const ObjectCacheConfig& c) { return double(c.entries) * (c.bytes ? c.bytes : 64); }
+
 }  // namespace
 
 double HwArea::chip() const {
@@ -58,7 +62,11 @@ HwArea hw_area(const TechFile& t, const HwConfig& given, const ReplayOptions& op
   a.ray_records = slots * opt.method.bits_per_ray() * t.register_bit_mm2;
   a.method_record_bits = slots * (opt.method.bits_per_ray() - kBaseRayBits) * t.register_bit_mm2;
   a.stack = slots * cfg.stack_depth * kStackEntryBits * t.register_bit_mm2;
-  if (!cfg.memory.ideal) {
+  if (cfg.memory.objects.enabled && !cfg.memory.ideal) {  // a core's object caches stand in its L1's place; no L2
+    double bytes = 0;
+    for (const ObjectCacheConfig& c : cfg.memory.objects.cache) bytes += object_cache_bytes(c);
+    a.l1_cache = 8.0 * bytes * t.sram_bit_mm2;
+  } else if (!cfg.memory.ideal) {
     a.l1_cache = cache_bits(cfg.memory.l1) * t.sram_bit_mm2;
     a.l2_cache = cache_bits(cfg.memory.l2) * t.sram_bit_mm2;
   }
@@ -117,7 +125,19 @@ nlohmann::json hw_energy_json(const TechFile& t, const HwConfig& cfg, const Repl
   // spill writes one 16-byte entry through the L1.
   double l1 = 0, l2 = 0, dram = 0, spills = 0;
   bool extrapolated = false;
-  if (!cfg.memory.ideal && memory.contains("l1")) {
+  if (cfg.memory.objects.enabled && memory.contains("objects")) {
+    // Every lookup reads an object, every miss writes one (its fill), each from
+    // an SRAM of its cache's size; DRAM per 64 bits moved.
+    for (int k = 0; k < ObjectCachesConfig::kKinds; ++k) {
+      const ObjectCacheConfig& oc = cfg.memory.objects.cache[k];
+      const nlohmann::json& m = memory["objects"][object_cache_name(static_cast<ObjectCachesConfig::Kind>(k))];
+      bool e = false;
+      const double w = (oc.bytes ? oc.bytes : 64) / 8.0 * t.sram_64bit_pj(static_cast<uint32_t>(std::max(64.0, object_cache_bytes(oc))), &e);
+      extrapolated = extrapolated || e;
+      l1 += (m["lookups"].get<double>() + m["misses"].get<double>()) * w;
+    }
+    dram = memory["dram"]["bytes"].get<double>() / 8.0 * t.dram_64bit_pj;
+  } else if (!cfg.memory.ideal && memory.contains("l1")) {
     bool e1 = false, e2 = false;
     const double w1 = cfg.memory.l1.line_bytes / 8.0 * t.sram_64bit_pj(cfg.memory.l1.size_bytes, &e1);
     const double w2 = cfg.memory.l2.line_bytes / 8.0 * t.sram_64bit_pj(cfg.memory.l2.size_bytes, &e2);
@@ -164,7 +184,7 @@ nlohmann::json hw_energy_json(const TechFile& t, const HwConfig& cfg, const Repl
       {"avoidance_unit", instance(ops.avoidance, area.avoidance_units, area.avoidance_unit)},
       {"emission_lane", instance(ops.emission + ops.result, area.emission_lanes, area.emission_unit)},
       {"l1_cache", instance(l1 + spills, cfg.memory.ideal ? 0 : cfg.cores, area.l1_cache)},
-      {"l2_cache", instance(l2, cfg.memory.ideal ? 0 : 1, area.l2_cache)}};
+      {"l2_cache", instance(l2, cfg.memory.hierarchy() ? 1 : 0, area.l2_cache)}};
   return j;
 }
 

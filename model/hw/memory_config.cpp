@@ -57,7 +57,7 @@ uint32_t dram_line_latency(const MemoryConfig& config) {
 const char* tlm_style_name(TlmStyle s) { return s == TlmStyle::LooselyTimed ? "lt" : "at"; }
 
 void check_memory_config(const MemoryConfig& config, int cores) {
-  if (config.ideal) return;
+  if (!config.hierarchy()) return;  // an ideal memory or object caches: no hierarchy to check
   if (cores < 1) throw std::invalid_argument("cores: must be at least 1, got " + std::to_string(cores));
   // An L1 hit is the fastest answer and must take at least one cycle (port contract).
   check_cache(config.l1, "l1", 1);
@@ -77,6 +77,15 @@ void check_memory_config(const MemoryConfig& config, int cores) {
   if (config.l2.line_bytes / bpc > 1048576.0)
     reject("dram_bytes_per_cycle", "too small: one line would take more than 2^20 cycles");
   if (config.dram_max_outstanding == 0) reject("dram_max_outstanding", "must be at least 1");
+}
+
+const char* object_cache_name(ObjectCachesConfig::Kind k) {
+  switch (k) {
+    case ObjectCachesConfig::NodeLow: return "node_low";
+    case ObjectCachesConfig::Node: return "node";
+    case ObjectCachesConfig::Triangle: return "triangle";
+    default: return "?";
+  }
 }
 
 }  // namespace vbsim::hw

@@ -32,6 +32,28 @@ enum class TlmStyle {
 };
 const char* tlm_style_name(TlmStyle s);  ///< "lt" / "at"
 
+/// One object cache of ObjectCachesConfig.
+struct ObjectCacheConfig {
+  uint32_t entries = 0;  ///< objects it holds (0: none, every read goes to DRAM)
+  uint32_t bytes = 0;    ///< bytes of one object as DRAM sends it (0: the read's own bytes)
+};
+
+/// Object caches per core, as rtcore-systemc's core has them, in place of the
+/// L1, the L2 and the DRAM model (hw/object_caches.h): three fully associative
+/// LRU caches of whole records (nodes both of whose children are low precision,
+/// other nodes, triangles), each read one lookup of one object; a miss reads
+/// the object from DRAM in dram_latency + ceil(bytes x dram_latency_per_byte)
+/// cycles, any number in flight, never merged with another miss.
+struct ObjectCachesConfig {
+  bool enabled = false;
+  enum Kind : uint8_t { NodeLow, Node, Triangle, kKinds };
+  ObjectCacheConfig cache[kKinds];
+  uint32_t hit_latency = 2;  ///< cycles from a lookup to a hit's data (and from a fill's arrival to its data)
+  uint32_t port_cycles = 1;  ///< a cache takes a lookup every this many cycles
+  uint32_t responses_per_cycle = 1;  ///< DRAM responses a core takes a cycle (0: any number)
+};
+const char* object_cache_name(ObjectCachesConfig::Kind k);  ///< "node_low", "node", "triangle"
+
 /// The memory system of the accelerator: a private L1 per core, a shared L2, DRAM.
 struct MemoryConfig {
   bool ideal = false;          ///< every read takes ideal_latency cycles, no caches
@@ -54,6 +76,10 @@ struct MemoryConfig {
   /// order, at a cost in simulation speed; false: when it is found, stamped
   /// with that cycle (the L2's accesses_out_of_time_order counts them).
   bool l2_lookups_in_time_order = false;
+  /// Enabled: object caches in place of the hierarchy (ideal must be false).
+  ObjectCachesConfig objects;
+  /// Whether the L1 / L2 / DRAM hierarchy is built (neither ideal nor object caches).
+  bool hierarchy() const { return !ideal && !objects.enabled; }
 };
 
 /// The unloaded latency of one line request: dram_latency plus

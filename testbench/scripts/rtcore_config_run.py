@@ -27,8 +27,10 @@ class RtcoreConfigTest(unittest.TestCase):
         out = json.loads(r.stdout)
         hw = out["hw"]
         self.assertEqual(hw["preset"], "rtcore")
-        # 512 entries of 40 + 64 + 36 bytes = 71,680 bytes = 1,120 lines of 64.
-        self.assertEqual(hw["memory"]["l1"], {"size_bytes": 71680, "ways": "full"})
+        # rtcore's three object caches: 512 entries each of its objects' sizes.
+        self.assertEqual(hw["memory"]["objects"], {"node_low": {"entries": 512, "bytes": 40},
+                                                   "node": {"entries": 512, "bytes": 64},
+                                                   "triangle": {"entries": 512, "bytes": 36}})
         self.assertEqual(hw["box"], {"count": 4, "latency": 20, "issue_interval": 20})  # NUM_HP
         self.assertEqual(hw["box_low"], {"count": 4, "latency": 20, "issue_interval": 20})  # NUM_LP
         self.assertEqual(hw["triangle"], {"count": 1, "latency": 32, "issue_interval": 32})
@@ -41,8 +43,9 @@ class RtcoreConfigTest(unittest.TestCase):
         self.assertEqual(r.returncode, 0, r.stderr)
         out = json.loads(r.stdout)
         hw = out["hw"]
-        # 16 x 40 + 32 x 64 + 8 x 36 = 2,976 bytes: 47 lines (2,976 / 64 = 46.5, rounded up).
-        self.assertEqual(hw["memory"]["l1"]["size_bytes"], 47 * 64)
+        # LP_L1C_ENTRIES, HP_L1C_ENTRIES, IST_L1C_ENTRIES: the three caches' entries.
+        self.assertEqual([hw["memory"]["objects"][k]["entries"] for k in ("node_low", "node", "triangle")],
+                         [16, 32, 8])
         self.assertEqual(hw["box"]["count"], 2)
         self.assertEqual(hw["box_low"]["count"], 2)
         self.assertEqual(hw["triangle"]["count"], 3)
@@ -71,9 +74,11 @@ class RtcoreConfigTest(unittest.TestCase):
             self.assertEqual(r.returncode, 0, r.stderr)
             with open(out) as f:
                 hw = json.load(f)["config"]
-            # 16 x 140 = 2,240 bytes: 35 lines, one set of 35 ways.
-            self.assertEqual(hw["memory"]["l1"]["ways"], 35)
-            self.assertEqual(hw["memory"]["l1"]["merge_misses"], False)
+            # The object caches, the rest of their parameters from the preset.
+            self.assertEqual(hw["memory"]["objects"]["node_low"], {"entries": 16, "bytes": 40})
+            self.assertEqual(hw["memory"]["objects"]["triangle"], {"entries": 16, "bytes": 36})
+            self.assertEqual(hw["memory"]["objects"]["port_cycles"], 2)
+            self.assertEqual(hw["memory"]["objects"]["responses_per_cycle"], 1)
             self.assertEqual(hw["memory"]["dram_latency_per_byte"], 5)
             self.assertEqual(hw["triangle"]["count"], 2)
             self.assertEqual(hw["box_low"]["count"], 1)
