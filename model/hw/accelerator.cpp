@@ -57,7 +57,7 @@ AcceleratorChecks::AcceleratorChecks(const HwConfig& config, const Bvh& bvh) {
 }
 
 void check_builtin_lookahead(const MemoryConfig& m) {
-  if (!m.ideal && m.tlm == TlmStyle::ApproximatelyTimed && m.at_lookahead_cycles > m.dram_latency)
+  if (m.hierarchy() && m.tlm == TlmStyle::ApproximatelyTimed && m.at_lookahead_cycles > m.dram_latency)
     throw std::invalid_argument(fmt::format(
         "memory.at_lookahead_cycles: {} is more than memory.dram_latency ({}): the built-in DRAM answers {} cycles "
         "after a request at the soonest, so the scheduler may not run further ahead",
@@ -68,7 +68,7 @@ Accelerator::Accelerator(sc_core::sc_module_name name, const HwConfig& config, c
                          const ReplayOptions& options, const AcceleratorUnits& units)
     : AcceleratorChecks(config, bvh), sc_core::sc_module(name), config_(for_tester(config, options.tester)), bvh_(bvh), replayer_(scene, bvh, options),
       clock_(config.clock_mhz),
-      at_(!config.memory.ideal && !units.l2_cache && config.memory.tlm == TlmStyle::ApproximatelyTimed),
+      at_(config.memory.hierarchy() && !units.l2_cache && config.memory.tlm == TlmStyle::ApproximatelyTimed),
       avoidance_in_use_(options.method.validity_bit && options.method.avoidance.policy != AvoidancePolicy::SignOnly),
       cores_("core") {
   if (!units.external_memory) check_builtin_lookahead(config.memory);

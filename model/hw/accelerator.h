@@ -14,6 +14,7 @@
 //     memory_socket             (hierarchical) to
 //     dram                      Dram, the built-in TLM-2.0 target (absent with external_memory)
 //     memory                    IdealMemory in place of the caches (memory.ideal)
+//     object_caches_<core>      ObjectCaches in place of each core's L1 and all behind it (memory.objects)
 //     result_sink               ResultSink (replaced: the replacement, and ResultSink as result_accounting)
 //
 // Time: one SC_METHOD (activate) runs the one scheduler (CycleEngine). An

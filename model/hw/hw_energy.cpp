@@ -161,7 +161,9 @@ nlohmann::json hw_energy_json(const TechFile& t, const HwConfig& cfg, const Repl
   };
   nlohmann::json j;
   j["tech"] = t.path;
-  j["memory_model"] = cfg.memory.ideal ? "ideal memory: not priced" : "SRAM per 64-bit access, DRAM per 64 bits";
+  j["memory_model"] = cfg.memory.ideal            ? "ideal memory: not priced"
+                      : cfg.memory.objects.enabled ? "object caches: SRAM per object read or written, DRAM per 64 bits"
+                                                   : "SRAM per 64-bit access, DRAM per 64 bits";
   if (extrapolated) j["sram_size_extrapolated"] = true;
   j["dynamic_pj"] = operation_parts_json(ops);
   j["dynamic_pj"]["l1"] = l1;

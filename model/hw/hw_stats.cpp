@@ -124,7 +124,7 @@ std::string hw_summary_table(const HwReport& r) {
   const HwCounters& c = r.counters;
   const HwConfig& cfg = r.config;
   std::string s = fmt::format("hw ({} preset, {} cores x {} slots, {:.0f} MHz, memory {})\n", cfg.preset, cfg.cores,
-                              cfg.slots_per_core, cfg.clock_mhz, cfg.memory.ideal ? "ideal" : "hierarchy");
+                              cfg.slots_per_core, cfg.clock_mhz, cfg.memory.ideal ? "ideal" : cfg.memory.objects.enabled ? "object caches" : "hierarchy");
   s += fmt::format("  cycles {:>12}   rays/cycle {:>8.4f}   rays/s at clock {:>12.4g}\n", c.cycles,
                    per(c.rays, c.cycles), per(c.rays, c.cycles) * cfg.clock_mhz * 1e6);
   s += fmt::format("  utilisation  box {}  triangle {}  avoidance {}  slots {:5.1f}%\n",
