@@ -95,26 +95,10 @@ Hit binary_closest_hit(const Bvh& bvh, const Ray& ray, const CandidateFilter& fi
         ref = first0 ? c0 : c1;
         continue;
       }
-    } else {
-      for (uint32_t i = ref.index, end = ref.index + ref.count; i < end; ++i) {
-        const BvhTriangle& bt = tris[i];
-        ++triangle_tests;
-        Hit h;
-        if (!tester.intersect(bt.tri, candidate_limit(best, tmax), h)) continue;
-        h.prim = static_cast<int32_t>(bt.prim);
-        if (!nearer_than_best(h, best, tmax)) continue;  // a tie with a lower id already held
-        if (!filter.accept(ray, bt.tri, h.prim, h, cc)) continue;
-        best = h;
-        tmax = h.t;
-        if (any_hit) return finish();
-      }
+    } else if (search_leaf(tris, ref, tester, ray, filter, cc, any_hit, best, tmax, triangle_tests)) {
+      return finish();
     }
-    // Pop the next subtree that the ray can still reach before its closest hit.
-    do {
-      if (sp == 0) return finish();
-      --sp;
-    } while (stack[sp].t > cull_limit(tmax));
-    ref = BvhRef{stack[sp].index, stack[sp].count};
+    if (!pop_reachable(stack, sp, tmax, ref)) return finish();
   }
 }
 

@@ -7,7 +7,9 @@
 
 #include <fmt/format.h>
 
+#include "datapath/candidate_filter.h"
 #include "datapath/hit.h"
+#include "datapath/ray.h"
 #include "datapath/ray_box_tester.h"
 #include "scene/bvh.h"
 
@@ -71,6 +73,41 @@ inline void check_traversal_depth(const Bvh& bvh) {
         "BVH too deep for the traversal stack of {} entries: width {}, {} levels (a {}-wide search may keep {} entries)",
         kTraversalStackDepth, bvh.width, bvh.width == 2 ? bvh.depth : bvh.wide_depth, bvh.width,
         bvh.width == 2 ? bvh.depth - 1 : (bvh.width - 1) * (bvh.wide_depth - 1)));
+}
+
+/// The leaf step every search shares: the leaf's triangles in order, each
+/// candidate through the tie rule and the filter; an accepted one becomes the
+/// best and shortens the interval. Returns true when an any-hit search is done.
+template <class Tester>
+__attribute__((always_inline)) inline bool search_leaf(const BvhTriangle* tris, BvhRef leaf, const Tester& tester,
+                                                       const Ray& ray, const CandidateFilter& filter,
+                                                       CandidateCounters& cc, bool any_hit, Hit& best, float& tmax,
+                                                       uint64_t& triangle_tests) {
+  for (uint32_t i = leaf.index, end = leaf.index + leaf.count; i < end; ++i) {
+    const BvhTriangle& bt = tris[i];
+    ++triangle_tests;
+    Hit h;
+    if (!tester.intersect(bt.tri, candidate_limit(best, tmax), h)) continue;
+    h.prim = static_cast<int32_t>(bt.prim);
+    if (!nearer_than_best(h, best, tmax)) continue;  // a tie with a lower id already held
+    if (!filter.accept(ray, bt.tri, h.prim, h, cc)) continue;
+    best = h;
+    tmax = h.t;
+    if (any_hit) return true;
+  }
+  return false;
+}
+
+/// Pops the next subtree the ray can still reach before its closest hit into
+/// `ref`; false when the stack is empty (the search is over).
+template <class Entry>
+__attribute__((always_inline)) inline bool pop_reachable(const Entry* stack, int& sp, float tmax, BvhRef& ref) {
+  do {
+    if (sp == 0) return false;
+    --sp;
+  } while (stack[sp].t > cull_limit(tmax));
+  ref = BvhRef{stack[sp].index, stack[sp].count};
+  return true;
 }
 
 }  // namespace vbsim

@@ -424,14 +424,7 @@ nlohmann::json Accelerator::object_caches_stats() const {
   uint64_t reads = 0, bytes = 0, uncached = 0, dram_reads = 0, dram_bytes = 0;
   for (int k = 0; k < ObjectCachesConfig::kKinds; ++k) {
     ObjectCacheCounters sum;
-    for (const auto& o : object_caches_) {
-      const ObjectCacheCounters& c = o->counters(static_cast<ObjectCachesConfig::Kind>(k));
-      sum.lookups += c.lookups;
-      sum.hits += c.hits;
-      sum.misses += c.misses;
-      sum.misses_in_flight += c.misses_in_flight;
-      sum.dram_bytes += c.dram_bytes;
-    }
+    for (const auto& o : object_caches_) sum.add(o->counters(static_cast<ObjectCachesConfig::Kind>(k)));
     all.accesses += sum.lookups;
     all.hits += sum.hits;
     all.misses += sum.misses;

@@ -42,6 +42,13 @@ struct ObjectCacheCounters {
   uint64_t lookups = 0, hits = 0, misses = 0;
   uint64_t misses_in_flight = 0;  ///< misses of an object whose earlier read had not arrived
   uint64_t dram_bytes = 0;        ///< bytes its misses read
+  void add(const ObjectCacheCounters& o) {
+    lookups += o.lookups;
+    hits += o.hits;
+    misses += o.misses;
+    misses_in_flight += o.misses_in_flight;
+    dram_bytes += o.dram_bytes;
+  }
 };
 
 class ObjectCaches final : public sc_core::sc_module, public MemoryReadIf, public StatProvider {

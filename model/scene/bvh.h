@@ -49,23 +49,11 @@ struct alignas(64) BvhNode {
   uint32_t axis;
 
   /// What child `c` (0 or 1) refers to.
-  BvhRef child(int c) const { return {ref[c], count[c]}; }
+  BvhRef child(int c) const { return slot_ref(*this, c); }
   /// Child `c`'s box.
-  Bounds3f child_bounds(int c) const {
-    Bounds3f b;
-    b.lo = {box[0][0][c], box[1][0][c], box[2][0][c]};
-    b.hi = {box[0][1][c], box[1][1][c], box[2][1][c]};
-    return b;
-  }
+  Bounds3f child_bounds(int c) const { return slot_bounds(*this, c); }
   /// Stores child `c`'s box and reference (precondition: r.count <= 65535).
-  void set_child(int c, const Bounds3f& b, BvhRef r) {
-    for (int a = 0; a < 3; ++a) {
-      box[a][0][c] = b.lo[a];
-      box[a][1][c] = b.hi[a];
-    }
-    ref[c] = r.index;
-    count[c] = static_cast<uint16_t>(r.count);
-  }
+  void set_child(int c, const Bounds3f& b, BvhRef r) { set_slot(*this, c, b, r); }
 };
 static_assert(sizeof(BvhNode) == 64 && alignof(BvhNode) == 64,
               "BvhNode is 64 bytes, 64-byte aligned, in the hardware layout");

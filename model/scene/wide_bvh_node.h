@@ -35,21 +35,9 @@ struct alignas(64) WideBvhNode {
   uint16_t count[W];
   uint32_t children;   ///< slots in use (the first ones)
 
-  BvhRef child(int c) const { return {ref[c], count[c]}; }
-  Bounds3f child_bounds(int c) const {
-    Bounds3f b;
-    b.lo = {box[0][0][c], box[1][0][c], box[2][0][c]};
-    b.hi = {box[0][1][c], box[1][1][c], box[2][1][c]};
-    return b;
-  }
-  void set_child(int c, const Bounds3f& b, BvhRef r) {
-    for (int a = 0; a < 3; ++a) {
-      box[a][0][c] = b.lo[a];
-      box[a][1][c] = b.hi[a];
-    }
-    ref[c] = r.index;
-    count[c] = static_cast<uint16_t>(r.count);
-  }
+  BvhRef child(int c) const { return slot_ref(*this, c); }
+  Bounds3f child_bounds(int c) const { return slot_bounds(*this, c); }
+  void set_child(int c, const Bounds3f& b, BvhRef r) { set_slot(*this, c, b, r); }
   /// Every slot unused: inverted boxes, null references, no children.
   void clear() {
     constexpr float inf = std::numeric_limits<float>::infinity();

@@ -200,12 +200,9 @@ TEST_CASE("the traversal controller's issue interval bounds a core's steps", "[c
   // A root leaf of one floor: each ray is the root box, the leaf and its result,
   // two controller passes. 32 slots keep many rays in flight, so the one
   // controller taking a step every I cycles is the bound: 2 I cycles a ray.
-  const Scene scene = make_scene({floor_at(0)});
-  Bvh bvh;
-  bvh.tris.push_back({scene.triangles[0], 0});
-  bvh.root = {0, 1};
-  bvh.root_bounds = box_of(0, 0);
-  bvh.depth = 1;
+  const OneFloorLeaf leaf;
+  const Scene& scene = leaf.scene;
+  const Bvh& bvh = leaf.bvh;
   const uint32_t I = 6, rays = 60;
   HwConfig cfg = one_slot(1, 1, 1, 1);
   cfg.slots_per_core = 32;
@@ -246,12 +243,7 @@ TEST_CASE("the controller takes each kind of step with its own latency and issue
 
   // Issue intervals: a root leaf of one floor, each ray a start and a leaf; with
   // 32 slots the one controller is the bound, Is + Il cycles a ray.
-  const Scene scene = make_scene({floor_at(0)});
-  Bvh bvh;
-  bvh.tris.push_back({scene.triangles[0], 0});
-  bvh.root = {0, 1};
-  bvh.root_bounds = box_of(0, 0);
-  bvh.depth = 1;
+  const OneFloorLeaf leaf;
   const uint32_t Is = 2, Il = 5, rays = 60;
   HwConfig bound = one_slot(1, 1, 1, 1);
   bound.slots_per_core = 32;
@@ -260,7 +252,7 @@ TEST_CASE("the controller takes each kind of step with its own latency and issue
   bound.controller.by_step[ControllerConfig::Leaf] = {true, 0, Il};
   std::vector<TraceRay> batch;
   for (uint32_t i = 0; i < rays; ++i) batch.push_back(down_from(i, 1.0f));
-  const Run busy = run_rays(batch, scene, bvh, ReplayOptions{}, bound);
+  const Run busy = run_rays(batch, leaf.scene, leaf.bvh, ReplayOptions{}, bound);
   const uint64_t cycles = busy.result.counters.cycles;
   CHECK(busy.result.counters.controller.busy_cycles == rays * (Is + Il));
   CHECK(cycles >= (Is + Il) * (rays - 1));

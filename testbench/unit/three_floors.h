@@ -70,6 +70,18 @@ struct ThreeFloorsLeaf {
   }
 };
 
+/// One floor (z = 0) as a root leaf.
+struct OneFloorLeaf {
+  Scene scene = make_scene({floor_at(0)});
+  Bvh bvh;
+  OneFloorLeaf() {
+    bvh.tris.push_back({scene.triangles[0], 0});
+    bvh.root = {0, 1};
+    bvh.root_bounds = box_of(0, 0);
+    bvh.depth = 1;
+  }
+};
+
 inline TraceRay down_from(int64_t id, float z) {
   TraceRay r;
   r.id = id;
