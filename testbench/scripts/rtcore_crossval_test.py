@@ -86,6 +86,28 @@ class CrossvalTest(unittest.TestCase):
         self.assertIn("| a regime | -2.0% | -4.0% | +2.0 points |", text)
         self.assertIn("- **a regime** (-2.0%; -4.0% over the sweep-SAH tree)", text)
 
+    def test_memory_bound_residual_by_hand(self):
+        # 4 rays, no unit near busy; rtcore misses 4 low-precision nodes, 2 other
+        # nodes and 2 triangles: (4 x 40 + 2 x 52 + 2 x 36) x 5 / 4 = 420 to
+        # (4 x 40 + 2 x 64 + 2 x 36) x 5 / 4 = 450 DRAM cycles a ray. vbsim misses
+        # 5, 2 and 2 objects (9: 2.25 a ray, +12.5%) of 400 bytes:
+        # (400 x 5 + 9) / 4 = 502.25 cycles a ray, +11.6% to +19.6%.
+        args = [64] * 3 + [0.5, 0.47, 32, 32, 32]
+        rt = {"cycles": 300, "end": 400, "latency": [100, 110, 120, 130],
+              "counts": {"lp": 16, "hp": 4, "ist": 8, "m_rtcore.m_bbox_l1c_lp.miss": 4,
+                         "m_rtcore.m_bbox_l1c_hp.miss": 2, "m_rtcore.m_ist_l1c.miss": 2}}
+        objects = {"node_low": {"misses": 5}, "node": {"misses": 2}, "triangle": {"misses": 2}}
+        vb = {"cycles": 330, "latency": [100, 120, 130, 140],
+              "hw": {"utilisation": {"box": 0.05, "triangle": 0.1},
+                     "units": {"box": {"ops": 20}, "triangle": {"ops": 8}},
+                     "memory": {"port": {"l1": {"misses": 9}, "objects": objects,
+                                         "dram": {"reads": 9, "bytes": 400}}}}}
+        with mock.patch.object(rtcore_crossval, "TAIL_RAYS", 1):
+            r = rtcore_crossval.row("caches", "cache-bound", args, rt, vb, 4)
+        text = rtcore_crossval.explain(r, "a tree")
+        self.assertIn("misses a ray by cache, rtcore 1.00, 0.50, 0.50, vbsim 1.25, 0.50, 0.50 (+12.5% in all)", text)
+        self.assertIn("their DRAM cycles a ray, vbsim 502, rtcore 420 to 450 (+11.6% to +19.6%)", text)
+
 
 if __name__ == "__main__":
     unittest.main()
