@@ -119,7 +119,8 @@ class BvhStepper {
 
   /// `bvh` and `filter` must outlive the stepper; onchip_depth >= 1.
   BvhStepper(const Bvh& bvh, const CandidateFilter& filter, int onchip_depth)
-      : bvh_(&bvh), onchip_depth_(onchip_depth < 1 ? 1 : onchip_depth), filter_(&filter) {}
+      : bvh_(&bvh), onchip_depth_(onchip_depth < 1 ? 1 : onchip_depth), narrow_on_(bvh.narrow_nodes()),
+        filter_(&filter) {}
 
   /// Latches `ray` and tests the root box. Counters go to `cc` and `tc`
   /// (which must outlive the search).
@@ -137,7 +138,6 @@ class BvhStepper {
     if (bvh_->tris.empty()) return done();  // an empty scene: nothing is read or counted
     tester_.emplace(ray_);
     box_.emplace(ray_);
-    narrow_on_ = bvh_->narrow_mantissa_bits >= 0 && !bvh_->low_precision_node.empty();
     if (__builtin_expect(narrow_on_, 0)) narrow_.emplace(ray_, bvh_->narrow_mantissa_bits);
     if (!root_box_test_) return visit(bvh_->root);
     ++tc.box_tests;
@@ -331,7 +331,7 @@ class BvhStepper {
   bool any_hit_ = false;
   bool root_box_test_ = true;
   bool pop_culling_ = true;
-  bool narrow_on_ = false;  ///< the tree's low-precision nodes are tested narrow (narrow_ holds the ray's test)
+  bool narrow_on_;  ///< the tree's low-precision nodes are tested narrow (Bvh::narrow_nodes; narrow_ holds the ray's test)
   const CandidateFilter* filter_;
   CandidateCounters* cc_ = nullptr;
   Hit best_;

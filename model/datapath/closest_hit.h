@@ -109,7 +109,7 @@ Hit closest_hit(const Bvh& bvh, const Ray& ray, const CandidateFilter& filter,
                 CandidateCounters& cc, TraversalCounters& tc, bool any_hit = false) {
   if (bvh.width == 4) return wide_closest_hit<4, Tester>(bvh, ray, filter, cc, tc, any_hit);
   if (bvh.width == 8) return wide_closest_hit<8, Tester>(bvh, ray, filter, cc, tc, any_hit);
-  if (__builtin_expect(bvh.narrow_mantissa_bits >= 0 && !bvh.low_precision_node.empty(), 0))
+  if (__builtin_expect(bvh.narrow_nodes(), 0))
     return binary_closest_hit<Tester, NarrowNodeBoxes>(bvh, ray, filter, cc, tc, any_hit);
   return binary_closest_hit<Tester, FloatNodeBoxes>(bvh, ray, filter, cc, tc, any_hit);
 }

@@ -22,14 +22,11 @@ struct BvhAddressMap {
   static constexpr uint32_t kStackEntryBytes = 16;
   static constexpr uint32_t kSpillBytesPerSlot = kTraversalStackDepth * kStackEntryBytes;
 
-  /// Bytes of one node record (one node fetch) at `width`: 64, 128 or 256.
-  static constexpr uint32_t node_bytes_at(int width) { return width == 8 ? 256u : width == 4 ? 128u : 64u; }
-
   uint32_t node_bytes = 64;
   uint64_t node_base = 0, tri_base = 0, spill_base = 0;
 
   BvhAddressMap(const Bvh& bvh, uint64_t base)
-      : node_bytes(node_bytes_at(bvh.width)),
+      : node_bytes(bvh.node_bytes()),
         node_base(base),
         tri_base(base + bvh.traversal_nodes() * uint64_t{node_bytes}),
         spill_base((tri_base + bvh.tris.size() * uint64_t{kTriangleBytes} + 63) / 64 * 64) {}

@@ -627,10 +627,7 @@ class Engine final : public CycleEngine, private SourceHost {
   // Per kind (0: a leaf's triangles, 1: a node), the modelled address of record `i`: base + stride * i.
   const uint64_t model_base_[2] = {map_.triangle(0), map_.node(0)};
   const uint64_t model_stride_[2] = {BvhAddressMap::kTriangleBytes, map_.node_bytes};
-  /// The host copy of the node records traversal reads (of the tree's width).
-  const char* node_host_ = bvh_.width == 4   ? reinterpret_cast<const char*>(bvh_.nodes4.data())
-                           : bvh_.width == 8 ? reinterpret_cast<const char*>(bvh_.nodes8.data())
-                                             : reinterpret_cast<const char*>(bvh_.nodes.data());
+  const char* node_host_ = bvh_.node_data();  ///< the node records traversal reads (of the tree's width)
   uint32_t source_id_ = slot_count(cfg_);
   uint32_t resumed_id_ = source_id_ + source_.event_ids();
   MemoryClock no_memory_work_{0};  // the clock without a memory step: never asked for a cycle

@@ -132,7 +132,7 @@ nlohmann::json hw_energy_json(const TechFile& t, const HwConfig& cfg, const Repl
       const ObjectCacheConfig& oc = cfg.memory.objects.cache[k];
       const nlohmann::json& m = memory["objects"][object_cache_name(static_cast<ObjectCachesConfig::Kind>(k))];
       bool e = false;
-      const double w = (oc.bytes ? oc.bytes : 64) / 8.0 * t.sram_64bit_pj(static_cast<uint32_t>(std::max(64.0, object_cache_bytes(oc))), &e);
+      const double w = (oc.bytes ? oc.bytes : 64) / 8.0 * t.sram_64bit_pj(std::max(64.0, object_cache_bytes(oc)), &e);
       extrapolated = extrapolated || e;
       l1 += (m["lookups"].get<double>() + m["misses"].get<double>()) * w;
     }

@@ -42,23 +42,13 @@ class UnitPipelines {
   /// Issue cycle of an operation whose operands are ready at `ready`, requested
   /// while handling the event at cycle `now`: `now` never decreases from one
   /// call to the next, and ready >= now.
-  uint64_t issue(uint64_t ready, uint64_t now) {
-    if (now / kWordBits != now_block_) move_to(now / kWordBits);
-    const uint64_t at = count_ == 1 && interval_ == 1 ? issue_single(ready) : issue_general(ready, interval_);
-    ++totals_->ops;
-    totals_->wait_cycles += at - ready;
-    return at;
-  }
+  uint64_t issue(uint64_t ready, uint64_t now) { return reserve(ready, now, interval_); }
   /// The same for an operation that holds its pipeline `interval` (>= 1) cycles
   /// instead of the configured issue interval (a controller's step of a kind
   /// with its own, hw.controller.by_step); these are counted in busy_cycles.
   uint64_t issue(uint64_t ready, uint64_t now, uint32_t interval) {
-    if (now / kWordBits != now_block_) move_to(now / kWordBits);
-    const uint64_t at = count_ == 1 && interval == 1 ? issue_single(ready) : issue_general(ready, interval);
-    ++totals_->ops;
-    totals_->wait_cycles += at - ready;
     totals_->busy_cycles += interval;
-    return at;
+    return reserve(ready, now, interval);
   }
   uint32_t latency() const { return latency_; }
 
@@ -77,6 +67,15 @@ class UnitPipelines {
     }
   }
   uint64_t issue_general(uint64_t ready, uint32_t interval);
+
+  /// An operation holding its pipeline `interval` cycles: its issue cycle, counted.
+  __attribute__((always_inline)) uint64_t reserve(uint64_t ready, uint64_t now, uint32_t interval) {
+    if (now / kWordBits != now_block_) move_to(now / kWordBits);
+    const uint64_t at = count_ == 1 && interval == 1 ? issue_single(ready) : issue_general(ready, interval);
+    ++totals_->ops;
+    totals_->wait_cycles += at - ready;
+    return at;
+  }
 
   /// Pipeline `pipe`'s word for `block`, a block from the current one on (the
   /// ring spans it: grown when needed).

@@ -111,7 +111,7 @@ struct BvhBuildOptions {
   /// leaves (up to max_leaf_size).
   float traversal_cost = 1.0f;
   /// Nodes of two precisions (off by default: every box in float32).
-  BvhPrecisionMarking low_precision;
+  BvhPrecisionMarking low_precision{};
   /// Children per interior node the traversal reads: 2 (BvhNode), or 4 or 8
   /// (WideBvhNode, collapsed from the binary tree; scene/bvh_collapse.h).
   /// Nodes of two precisions are binary only.
@@ -151,6 +151,18 @@ struct Bvh {
   int wide_depth = 0;
   /// Interior nodes traversal reads at this width.
   size_t traversal_nodes() const { return width == 4 ? nodes4.size() : width == 8 ? nodes8.size() : nodes.size(); }
+  /// Bytes of one node record traversal reads (one node fetch): 64, 128 or 256.
+  uint32_t node_bytes() const {
+    return width == 4 ? sizeof(BvhNode4) : width == 8 ? sizeof(BvhNode8) : sizeof(BvhNode);
+  }
+  /// The host copy of those records (node i at node_data() + i * node_bytes()).
+  const char* node_data() const {
+    return width == 4   ? reinterpret_cast<const char*>(nodes4.data())
+           : width == 8 ? reinterpret_cast<const char*>(nodes8.data())
+                        : reinterpret_cast<const char*>(nodes.data());
+  }
+  /// Whether the nodes low_precision_node marks are tested in the narrow format.
+  bool narrow_nodes() const { return narrow_mantissa_bits >= 0 && !low_precision_node.empty(); }
 };
 
 /// Builds the BVH of `scene` with the options' builder: rtcBuildBVH (quality,

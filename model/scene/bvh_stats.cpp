@@ -30,7 +30,7 @@ BvhStats compute_bvh_stats(const Bvh& bvh) {
   s.triangle_bytes = s.triangles * static_cast<int64_t>(sizeof(BvhTriangle));
   s.width = bvh.width;
   s.wide_nodes = static_cast<int64_t>(bvh.traversal_nodes());
-  s.wide_node_bytes = s.wide_nodes * (bvh.width == 8 ? 256 : bvh.width == 4 ? 128 : 64);
+  s.wide_node_bytes = s.wide_nodes * bvh.node_bytes();
   s.wide_depth = bvh.width == 2 ? bvh.depth : bvh.wide_depth;
   if (bvh.tris.empty()) return s;  // build_bvh's empty scene: no nodes, no leaves, depth 0
 

@@ -12,6 +12,7 @@
 #include "bench/functional_bench.h"
 #include "datapath/closest_hit.h"
 #include "datapath/testers.h"
+#include "datapath/wide_closest_hit.h"
 #include "scene/bvh.h"
 #include "scene/bvh_collapse.h"
 #include "scene/bvh_stats.h"
@@ -39,12 +40,6 @@ Bvh walls_bvh(int width) {
   return build_bvh(four_walls(), o);
 }
 
-template <int W>
-const std::vector<WideBvhNode<W>>& wide(const Bvh& b) {
-  if constexpr (W == 4) return b.nodes4;
-  else return b.nodes8;
-}
-
 /// Walks the W-wide tree: pre-order indices, slot boxes that are exactly their
 /// triangles' bounds, leaves in the binary tree's order; returns the depth.
 template <int W>
@@ -63,9 +58,9 @@ int check_wide(const Bvh& bvh, BvhRef ref, const Bounds3f& box, uint32_t& next_n
     return 1;
   }
   CHECK(ref.index == next_node);
-  REQUIRE(ref.index < wide<W>(bvh).size());
+  REQUIRE(ref.index < wide_nodes<W>(bvh).size());
   ++next_node;
-  const WideBvhNode<W>& n = wide<W>(bvh)[ref.index];
+  const WideBvhNode<W>& n = wide_nodes<W>(bvh)[ref.index];
   REQUIRE(n.children >= 2);
   REQUIRE(n.children <= static_cast<uint32_t>(W));
   opened += n.children - 1;  // a node of k slots stands for k - 1 binary nodes
@@ -93,10 +88,10 @@ void check_wide_structure(const Bvh& bvh) {
   uint64_t opened = 0;
   const int depth = check_wide<W>(bvh, bvh.root, bvh.root_bounds, next_node, next_tri, opened);
   CHECK(depth == bvh.wide_depth);
-  CHECK(next_node == wide<W>(bvh).size());
+  CHECK(next_node == wide_nodes<W>(bvh).size());
   CHECK(next_tri == bvh.tris.size());
   CHECK(opened == bvh.nodes.size());  // every binary node opened exactly once
-  CHECK(reinterpret_cast<uintptr_t>(wide<W>(bvh).data()) % 64 == 0);
+  CHECK(reinterpret_cast<uintptr_t>(wide_nodes<W>(bvh).data()) % 64 == 0);
 }
 
 bool same_bits(float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; }
