@@ -73,6 +73,7 @@ Hit binary_closest_hit(const Bvh& bvh, const Ray& ray, const CandidateFilter& fi
   // Held in registers: the tester's out-of-line calls could otherwise force re-reads.
   const BvhNode* const nodes = bvh.nodes.data();
   const BvhTriangle* const tris = bvh.tris.data();
+  const TriangleLanes* const lanes = bvh.triangle_lanes();
   BvhRef ref = bvh.root;
   for (;;) {
     if (!ref.is_leaf()) {
@@ -95,7 +96,7 @@ Hit binary_closest_hit(const Bvh& bvh, const Ray& ray, const CandidateFilter& fi
         ref = first0 ? c0 : c1;
         continue;
       }
-    } else if (search_leaf(tris, ref, tester, ray, filter, cc, any_hit, best, tmax, triangle_tests)) {
+    } else if (search_leaf(tris, lanes, ref, tester, ray, filter, cc, any_hit, best, tmax, triangle_tests)) {
       return finish();
     }
     if (!pop_reachable(stack, sp, tmax, ref)) return finish();

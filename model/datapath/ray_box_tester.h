@@ -54,9 +54,21 @@ class RayBoxTester {
 
   /// Per-ray set-up (as a hardware box unit latches the ray: o, 1/d, tmin).
   explicit RayBoxTester(const Ray& ray) : tmin_(ray.tmin) {  // (the vectors are set below)
+#if defined(__SSE2__)
+    {  // safe_reciprocal of the three components in one vector division (the same roundings)
+      const __m128 d = _mm_setr_ps(ray.d.x, ray.d.y, ray.d.z, 1.0f);
+      const __m128 sign = _mm_set1_ps(-0.0f), tiny = _mm_set1_ps(1e-18f);
+      const __m128 small = _mm_cmplt_ps(_mm_andnot_ps(sign, d), tiny);
+      const __m128 safe = _mm_or_ps(_mm_andnot_ps(small, d), _mm_and_ps(small, _mm_or_ps(tiny, _mm_and_ps(sign, d))));
+      alignas(16) float inv[4];
+      _mm_store_ps(inv, _mm_div_ps(_mm_set1_ps(1.0f), safe));
+      for (int a = 0; a < 3; ++a) inv_[a] = inv[a];
+    }
+#else
+    for (int a = 0; a < 3; ++a) inv_[a] = safe_reciprocal(ray.d[a]);
+#endif
     for (int a = 0; a < 3; ++a) {
       o_[a] = ray.o[a];
-      inv_[a] = safe_reciprocal(ray.d[a]);
       near_side_[a] = inv_[a] >= 0 ? 0 : 1;
       near_pair_[a] = 4 * a + 2 * near_side_[a];
       far_pair_[a] = 4 * a + 2 * (1 - near_side_[a]);
@@ -73,6 +85,9 @@ class RayBoxTester {
     }
 #endif
   }
+
+  /// The latched 1 / d on `axis` (safe_reciprocal of the ray's component).
+  float reciprocal(int axis) const { return inv_[axis]; }
 
   /// True when the ray's interval [tmin, tmax] meets box `b`.
   bool hits(const Bounds3f& b, float tmax) const {

@@ -4,6 +4,7 @@
 #pragma once
 #include <cstdint>
 #include <stdexcept>
+#include <type_traits>
 
 #include <fmt/format.h>
 
@@ -11,7 +12,9 @@
 #include "datapath/hit.h"
 #include "datapath/ray.h"
 #include "datapath/ray_box_tester.h"
+#include "datapath/three_half_plane_lanes.h"
 #include "scene/bvh.h"
+#include "scene/triangle_lanes.h"
 
 namespace vbsim {
 
@@ -32,6 +35,20 @@ struct TraversalCounters {
 };
 
 constexpr int kTraversalStackDepth = 128;
+
+/// Whether `Tester` has a four-lane form (intersect_lanes, LaneHits, kTestsLanes).
+template <class Tester, class = void>
+struct HasLaneForm {
+  static constexpr bool value = false;
+};
+template <class Tester>
+struct HasLaneForm<Tester, std::void_t<typename Tester::LaneHits>> {
+  static constexpr bool value = Tester::kTestsLanes;
+};
+template <class Tester>
+constexpr bool tests_lanes() {
+  return HasLaneForm<Tester>::value;
+}
 
 // Ties. A closest-hit search keeps, of candidates at the same distance, the one
 // of the lowest primitive id, so that its hit does not depend on the order the
@@ -75,25 +92,78 @@ inline void check_traversal_depth(const Bvh& bvh) {
         bvh.width == 2 ? bvh.depth - 1 : (bvh.width - 1) * (bvh.wide_depth - 1)));
 }
 
+/// A candidate `h` of triangle `bt`, found below candidate_limit(best, tmax):
+/// the tie rule, then the filter; an accepted one becomes the best and
+/// shortens the interval. True when it was accepted.
+__attribute__((always_inline)) inline bool take_candidate(Hit h, const BvhTriangle& bt, const Ray& ray,
+                                                          const CandidateFilter& filter, CandidateCounters& cc,
+                                                          Hit& best, float& tmax) {
+  h.prim = static_cast<int32_t>(bt.prim);
+  if (!nearer_than_best(h, best, tmax)) return false;  // a tie with a lower id already held
+  if (!filter.accept(ray, bt.tri, h.prim, h, cc)) return false;
+  best = h;
+  tmax = h.t;
+  return true;
+}
+
+/// search_leaf four triangles at a time: each group is tested once against
+/// cull_limit(tmax) (no later candidate_limit in the leaf exceeds it, as tmax
+/// only shrinks), then its candidates are taken in order, each held again to
+/// the limit of its turn (LaneHits::below: the tester's own upper-bound checks,
+/// so the answer is intersect()'s with that limit); a lane that needs the
+/// tester's exact redo is tested by intersect() itself.
+template <class Tester>
+__attribute__((always_inline)) inline bool search_leaf_lanes(const BvhTriangle* tris, const TriangleLanes& lanes,
+                                                             BvhRef leaf, const Tester& tester, const Ray& ray,
+                                                             const CandidateFilter& filter, CandidateCounters& cc,
+                                                             bool any_hit, Hit& best, float& tmax,
+                                                             uint64_t& triangle_tests) {
+  for (uint32_t g = leaf.index, end = leaf.index + leaf.count; g < end; g += 4) {
+    const int n = end - g < 4u ? static_cast<int>(end - g) : 4;
+    typename Tester::LaneHits lh;
+    tester.intersect_lanes(lanes, g, n, cull_limit(tmax), lh);
+    for (unsigned todo = lh.met | lh.redo; todo != 0u; todo &= todo - 1u) {
+      const int l = __builtin_ctz(todo);
+      const BvhTriangle& bt = tris[g + static_cast<uint32_t>(l)];
+      const float limit = candidate_limit(best, tmax);
+      Hit h;
+      if ((lh.redo >> l) & 1u) {
+        if (!tester.intersect(bt.tri, limit, h)) continue;
+      } else {
+        if (!lh.below(l, limit)) continue;
+        h = lh.hit(l);
+      }
+      if (take_candidate(h, bt, ray, filter, cc, best, tmax) && any_hit) {
+        triangle_tests += static_cast<uint64_t>(l) + 1u;
+        return true;
+      }
+    }
+    triangle_tests += static_cast<uint64_t>(n);
+  }
+  return false;
+}
+
 /// The leaf step every search shares: the leaf's triangles in order, each
 /// candidate through the tie rule and the filter; an accepted one becomes the
 /// best and shortens the interval. Returns true when an any-hit search is done.
+/// With `lanes` (the tree's TriangleLanes, or nullptr) and a tester that has a
+/// four-lane form, four triangles are tested at once (search_leaf_lanes), with
+/// the same answers and counts.
 template <class Tester>
-__attribute__((always_inline)) inline bool search_leaf(const BvhTriangle* tris, BvhRef leaf, const Tester& tester,
-                                                       const Ray& ray, const CandidateFilter& filter,
-                                                       CandidateCounters& cc, bool any_hit, Hit& best, float& tmax,
+__attribute__((always_inline)) inline bool search_leaf(const BvhTriangle* tris, const TriangleLanes* lanes,
+                                                       BvhRef leaf, const Tester& tester, const Ray& ray,
+                                                       const CandidateFilter& filter, CandidateCounters& cc,
+                                                       bool any_hit, Hit& best, float& tmax,
                                                        uint64_t& triangle_tests) {
+  if constexpr (tests_lanes<Tester>())
+    if (lanes != nullptr)
+      return search_leaf_lanes(tris, *lanes, leaf, tester, ray, filter, cc, any_hit, best, tmax, triangle_tests);
   for (uint32_t i = leaf.index, end = leaf.index + leaf.count; i < end; ++i) {
     const BvhTriangle& bt = tris[i];
     ++triangle_tests;
     Hit h;
     if (!tester.intersect(bt.tri, candidate_limit(best, tmax), h)) continue;
-    h.prim = static_cast<int32_t>(bt.prim);
-    if (!nearer_than_best(h, best, tmax)) continue;  // a tie with a lower id already held
-    if (!filter.accept(ray, bt.tri, h.prim, h, cc)) continue;
-    best = h;
-    tmax = h.t;
-    if (any_hit) return true;
+    if (take_candidate(h, bt, ray, filter, cc, best, tmax) && any_hit) return true;
   }
   return false;
 }

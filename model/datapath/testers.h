@@ -8,12 +8,19 @@
 // (no culling). A triangle whose plane contains the ray is not hit.
 #pragma once
 #include <string>
+#include <utility>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include "datapath/hit.h"
 #include "datapath/ray.h"
 #include "datapath/triangle.h"
 
 namespace vbsim {
+
+class TriangleLanes;
 
 enum class TesterKind { ThreeHalfPlane, MollerTrumbore, PbrtWatertight };
 /// "three-half-plane" / "moller-trumbore" / "pbrt-watertight"
@@ -28,8 +35,39 @@ bool parse_tester(const std::string& name, TesterKind& out);
 /// closed mesh hits at least one of the triangles.
 class ThreeHalfPlaneTester {
  public:
-  explicit ThreeHalfPlaneTester(const Ray& ray);
+  explicit ThreeHalfPlaneTester(const Ray& ray);  ///< the per-ray set-up (inline, below)
   bool intersect(const Triangle& tri, float tmax, Hit& hit) const;
+
+#if defined(__SSE2__)
+  /// Whether intersect_lanes exists (an SSE2 host).
+  static constexpr bool kTestsLanes = true;
+#else
+  static constexpr bool kTestsLanes = false;
+#endif
+  /// What intersect_lanes answers for up to four triangles (lanes 0..3).
+  struct LaneHits {
+    unsigned met = 0;   ///< bit l: intersect(triangle l, bound) would be true (its other fields valid)
+    unsigned redo = 0;  ///< bit l: an edge function came out exactly 0: ask intersect() itself
+    alignas(16) float t[4], e_v[4], e_w[4], det[4], t_signed[4], abs_det[4];
+    /// For a lane of `met`: whether it is also a hit below `tmax` <= the bound
+    /// (intersect()'s two upper-bound checks again, with `tmax`).
+    bool below(int l, float tmax) const { return t_signed[l] < tmax * abs_det[l] && t[l] < tmax; }
+    /// intersect()'s hit for a lane of `met`.
+    Hit hit(int l) const {
+      Hit h;
+      h.t = t[l];
+      h.u = e_v[l] / det[l];
+      h.v = e_w[l] / det[l];
+      h.front = det[l] > 0.0f ? 1 : 0;
+      return h;
+    }
+  };
+  /// intersect() of the triangles first .. first + n - 1 (1 <= n <= 4) of
+  /// `lanes` against the interval (tmin, bound), four lanes in one SSE2 pass
+  /// with the same float operations in the same order (so the same bits).
+  /// A lane whose edge functions need intersect()'s double-precision redo is
+  /// only flagged. Only where kTestsLanes (three_half_plane_lanes.h).
+  void intersect_lanes(const TriangleLanes& lanes, uint32_t first, int n, float bound, LaneHits& out) const;
 
  private:
   Vec3f o_;
@@ -37,6 +75,30 @@ class ThreeHalfPlaneTester {
   int kx_, ky_, kz_;
   float sx_, sy_, sz_;
 };
+
+// The set-up: the axis the direction is longest along becomes z (kz), the
+// other two follow in cyclic order (swapped when d[kz] < 0, which keeps the
+// projection's winding), and the shear maps d to +z (the .cpp's derivation).
+inline ThreeHalfPlaneTester::ThreeHalfPlaneTester(const Ray& ray) : o_(ray.o), tmin_(ray.tmin) {
+  static constexpr int kNext[3] = {1, 2, 0};
+  const float d[3] = {ray.d.x, ray.d.y, ray.d.z};
+  kz_ = max_dimension(ray.d);
+  kx_ = kNext[kz_];
+  ky_ = kNext[kx_];
+  if (d[kz_] < 0.0f) std::swap(kx_, ky_);  // keeps the winding of the projection
+#if defined(__SSE2__)
+  // The three quotients in one vector division (each lane rounds as its own division would).
+  alignas(16) float q[4];
+  _mm_store_ps(q, _mm_div_ps(_mm_setr_ps(d[kx_], d[ky_], 1.0f, 1.0f), _mm_set1_ps(d[kz_])));
+  sx_ = q[0];
+  sy_ = q[1];
+  sz_ = q[2];
+#else
+  sx_ = d[kx_] / d[kz_];
+  sy_ = d[ky_] / d[kz_];
+  sz_ = 1.0f / d[kz_];
+#endif
+}
 
 /// What pbrt-v4's IntersectTriangle returns: barycentrics b0, b1, b2 (weights
 /// of v0, v1, v2, each e_i / det computed as e_i * (1 / det)) and t; front as

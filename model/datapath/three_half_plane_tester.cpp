@@ -22,19 +22,10 @@
 #include <cmath>
 #include <utility>
 
+
 #include "datapath/testers.h"
 
 namespace vbsim {
-
-ThreeHalfPlaneTester::ThreeHalfPlaneTester(const Ray& ray) : o_(ray.o), tmin_(ray.tmin) {
-  kz_ = max_dimension(ray.d);
-  kx_ = (kz_ + 1) % 3;
-  ky_ = (kx_ + 1) % 3;
-  if (ray.d[kz_] < 0.0f) std::swap(kx_, ky_);  // keeps the winding of the projection
-  sx_ = ray.d[kx_] / ray.d[kz_];
-  sy_ = ray.d[ky_] / ray.d[kz_];
-  sz_ = 1.0f / ray.d[kz_];
-}
 
 bool ThreeHalfPlaneTester::intersect(const Triangle& tri, float tmax, Hit& hit) const {
   // Vertices relative to the ray origin, then sheared so that d becomes +z.

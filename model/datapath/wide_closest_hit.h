@@ -75,6 +75,7 @@ __attribute__((always_inline)) inline Hit wide_search(const Bvh& bvh, const Ray&
   if (!box.hits(bvh.root_bounds, cull_limit(tmax))) return finish();
   const WideBvhNode<W>* const nodes = wide_nodes<W>(bvh).data();
   const BvhTriangle* const tris = bvh.tris.data();
+  const TriangleLanes* const lanes = bvh.triangle_lanes();
   BvhRef ref = bvh.root;
   for (;;) {
     if (!ref.is_leaf()) {
@@ -104,7 +105,7 @@ __attribute__((always_inline)) inline Hit wide_search(const Bvh& bvh, const Ray&
         ref = n.child(order[0]);
         continue;
       }
-    } else if (search_leaf(tris, ref, tester, ray, filter, cc, any_hit, best, tmax, triangle_tests)) {
+    } else if (search_leaf(tris, lanes, ref, tester, ray, filter, cc, any_hit, best, tmax, triangle_tests)) {
       return finish();
     }
     if (!pop_reachable(stack, sp, tmax, ref)) return finish();

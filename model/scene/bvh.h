@@ -38,6 +38,7 @@
 #include "datapath/triangle.h"
 #include "scene/bvh_ref.h"
 #include "scene/scene.h"
+#include "scene/triangle_lanes.h"
 #include "scene/wide_bvh_node.h"
 
 namespace vbsim {
@@ -163,12 +164,19 @@ struct Bvh {
   }
   /// Whether the nodes low_precision_node marks are tested in the narrow format.
   bool narrow_nodes() const { return narrow_mantissa_bits >= 0 && !low_precision_node.empty(); }
+  /// `tris`' coordinates as a structure of arrays, for the functional search's
+  /// four-triangle leaf test (build_bvh fills it; a tree put together by hand
+  /// may leave it empty, and a search then tests a triangle at a time).
+  TriangleLanes lanes;
+  /// The lanes when they hold `tris`, else nullptr.
+  const TriangleLanes* triangle_lanes() const { return lanes.size() == tris.size() ? &lanes : nullptr; }
 };
 
 /// Builds the BVH of `scene` with the options' builder: rtcBuildBVH (quality,
 /// leaf size, traversal cost) or the sweep SAH (leaf size, traversal cost),
 /// then marks its nodes' precisions when the options ask (bvh_precision.h)
-/// and collapses it to the options' width (bvh_collapse.h);
+/// and collapses it to the options' width (bvh_collapse.h), and fills its
+/// triangle lanes;
 /// std::invalid_argument when an option is out of range. Every
 /// triangle appears in exactly one leaf; an empty scene gives no nodes and no triangles.
 Bvh build_bvh(const Scene& scene, const BvhBuildOptions& options = {});

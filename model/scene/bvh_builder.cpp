@@ -207,6 +207,7 @@ Bvh build_bvh(const Scene& scene, const BvhBuildOptions& options) {
   Bvh bvh = build_tree(scene, options);
   if (options.low_precision.enabled) mark_low_precision(bvh, options.low_precision);
   collapse_bvh(bvh, options.width);
+  bvh.lanes.fill(bvh.tris.data(), bvh.tris.size());
   return bvh;
 }
 

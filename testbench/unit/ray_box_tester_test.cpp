@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <cstring>
 #include <random>
 
 #include <gmpxx.h>
@@ -147,4 +148,25 @@ TEST_CASE("slab test never culls a box the exact test meets, its forms agree bit
   }
   CHECK(exact_hits > 1500);
   CHECK(grazing > 500);
+}
+
+TEST_CASE("the latched reciprocals are safe_reciprocal's, zeros and tiny components included", "[closest_hit]") {
+  // Hand: 1 / 4 = 0.25; |d| < 1e-18 becomes 1e-18 of d's sign (so 1 / d = +-1e18,
+  // rounded once); a zero keeps its sign; 1e-18 itself is not replaced.
+  const float tiny = 1e-18f;
+  const float components[] = {4.0f, -0.5f, 3.0f, 0.0f, -0.0f, 1e-19f, -1e-19f, tiny, -tiny, 1e-45f,
+                              std::nextafter(tiny, 0.0f), 7e37f, -1e-10f};
+  const float expected_tiny = 1.0f / tiny;
+  for (float x : components)
+    for (int axis = 0; axis < 3; ++axis) {
+      Vec3f d{1.0f, 1.0f, 1.0f};
+      d[axis] = x;
+      const RayBoxTester box(make_ray({0, 0, 0}, d));
+      INFO("component " << x << " on axis " << axis);
+      const float got = box.reciprocal(axis), want = RayBoxTester::safe_reciprocal(x);
+      CHECK(std::memcmp(&got, &want, sizeof got) == 0);
+      CHECK(box.reciprocal((axis + 1) % 3) == 1.0f);
+      if (x == 4.0f) CHECK(got == 0.25f);
+      if (std::fabs(x) < tiny) CHECK(got == std::copysign(expected_tiny, x));
+    }
 }
