@@ -36,19 +36,12 @@ struct TraversalCounters {
 
 constexpr int kTraversalStackDepth = 128;
 
-/// Whether `Tester` has a four-lane form (intersect_lanes, LaneHits, kTestsLanes).
+/// Whether `Tester` has a four-lane form (LaneHits and intersect_lanes; the
+/// three-half-plane tester on an SSE2 host).
 template <class Tester, class = void>
-struct HasLaneForm {
-  static constexpr bool value = false;
-};
+struct HasLaneForm : std::false_type {};
 template <class Tester>
-struct HasLaneForm<Tester, std::void_t<typename Tester::LaneHits>> {
-  static constexpr bool value = Tester::kTestsLanes;
-};
-template <class Tester>
-constexpr bool tests_lanes() {
-  return HasLaneForm<Tester>::value;
-}
+struct HasLaneForm<Tester, std::void_t<typename Tester::LaneHits>> : std::true_type {};
 
 // Ties. A closest-hit search keeps, of candidates at the same distance, the one
 // of the lowest primitive id, so that its hit does not depend on the order the
@@ -155,7 +148,7 @@ __attribute__((always_inline)) inline bool search_leaf(const BvhTriangle* tris, 
                                                        const CandidateFilter& filter, CandidateCounters& cc,
                                                        bool any_hit, Hit& best, float& tmax,
                                                        uint64_t& triangle_tests) {
-  if constexpr (tests_lanes<Tester>())
+  if constexpr (HasLaneForm<Tester>::value)
     if (lanes != nullptr)
       return search_leaf_lanes(tris, *lanes, leaf, tester, ray, filter, cc, any_hit, best, tmax, triangle_tests);
   for (uint32_t i = leaf.index, end = leaf.index + leaf.count; i < end; ++i) {

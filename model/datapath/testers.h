@@ -38,12 +38,7 @@ class ThreeHalfPlaneTester {
   explicit ThreeHalfPlaneTester(const Ray& ray);  ///< the per-ray set-up (inline, below)
   bool intersect(const Triangle& tri, float tmax, Hit& hit) const;
 
-#if defined(__SSE2__)
-  /// Whether intersect_lanes exists (an SSE2 host).
-  static constexpr bool kTestsLanes = true;
-#else
-  static constexpr bool kTestsLanes = false;
-#endif
+#if defined(__SSE2__)  // the four-lane form (a search looks for LaneHits: search_rules.h)
   /// What intersect_lanes answers for up to four triangles (lanes 0..3).
   struct LaneHits {
     unsigned met = 0;   ///< bit l: intersect(triangle l, bound) would be true (its other fields valid)
@@ -66,8 +61,9 @@ class ThreeHalfPlaneTester {
   /// `lanes` against the interval (tmin, bound), four lanes in one SSE2 pass
   /// with the same float operations in the same order (so the same bits).
   /// A lane whose edge functions need intersect()'s double-precision redo is
-  /// only flagged. Only where kTestsLanes (three_half_plane_lanes.h).
+  /// only flagged. Defined in three_half_plane_lanes.h.
   void intersect_lanes(const TriangleLanes& lanes, uint32_t first, int n, float bound, LaneHits& out) const;
+#endif
 
  private:
   Vec3f o_;

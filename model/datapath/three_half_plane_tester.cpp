@@ -20,8 +20,6 @@
 // makes det(perm) = -1. Hence det > 0  <=>  dot(d, Ng) < 0  <=>  front = 1.
 // (Checked against an independent dot(d, Ng) in three_half_plane_tester_test.cpp.)
 #include <cmath>
-#include <utility>
-
 
 #include "datapath/testers.h"
 

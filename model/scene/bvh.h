@@ -166,7 +166,8 @@ struct Bvh {
   bool narrow_nodes() const { return narrow_mantissa_bits >= 0 && !low_precision_node.empty(); }
   /// `tris`' coordinates as a structure of arrays, for the functional search's
   /// four-triangle leaf test (build_bvh fills it; a tree put together by hand
-  /// may leave it empty, and a search then tests a triangle at a time).
+  /// may leave it empty, and a search then tests a triangle at a time; whoever
+  /// changes `tris` afterwards fills it again, or empties it).
   TriangleLanes lanes;
   /// The lanes when they hold `tris`, else nullptr.
   const TriangleLanes* triangle_lanes() const { return lanes.size() == tris.size() ? &lanes : nullptr; }

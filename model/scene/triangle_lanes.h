@@ -15,8 +15,9 @@ struct BvhTriangle;
 
 class TriangleLanes {
  public:
-  /// Lanes a reader may load past the last triangle (the arrays are padded).
-  static constexpr size_t kPadding = 7;
+  /// Lanes a reader may load past the last triangle (the arrays are padded):
+  /// a four-lane load that starts at the last one.
+  static constexpr size_t kPadding = 3;
 
   /// Copies the coordinates of `tris[0..count)`.
   void fill(const BvhTriangle* tris, size_t count);
