@@ -72,6 +72,8 @@ class RayBoxTester {
       near_side_[a] = inv_[a] >= 0 ? 0 : 1;
       near_pair_[a] = 4 * a + 2 * near_side_[a];
       far_pair_[a] = 4 * a + 2 * (1 - near_side_[a]);
+      wide_near_[a] = static_cast<ptrdiff_t>(sizeof(float) * 4 * (2 * a + near_side_[a]));
+      wide_far_[a] = static_cast<ptrdiff_t>(sizeof(float) * 4 * (2 * a + 1 - near_side_[a]));
     }
 #if defined(__SSE2__)
     o_xy_ = _mm_setr_ps(o_[0], o_[0], o_[1], o_[1]);
@@ -83,6 +85,7 @@ class RayBoxTester {
       o_lanes_[a] = _mm_set1_ps(o_[a]);
       inv_lanes_[a] = _mm_set1_ps(inv_[a]);
     }
+    widen4_ = _mm_set1_ps(kWiden);
 #endif
   }
 
@@ -182,44 +185,60 @@ class RayBoxTester {
   }
 
 #if defined(__SSE2__)
-  /// The wide test with SSE2, four slots a vector.
+  /// The wide test with SSE2, four slots a vector. Each axis's near and far
+  /// rows are read at the byte offsets the constructor chose by the sign of
+  /// 1/d (wide_near_ / wide_far_). The maxima and minima are taken as a tree
+  /// and "entry <= min(exit * widen, tmax)" as two comparisons, for a shorter
+  /// dependency chain: no distance is NaN (1/d is finite and non-zero, an
+  /// unused slot's infinite bounds give infinite distances), so these are the
+  /// scalar form's values (a zero's sign aside, which no comparison sees) and
+  /// the same mask.
   template <int W>
   unsigned hits_wide_sse2(const WideBvhNode<W>& n, float tmax, float* entry) const {
-    const __m128 widen = _mm_set1_ps(kWiden), limit_t = _mm_set1_ps(tmax);
+    constexpr int kScale = W / 4;  // a W-wide node's rows are kScale times a 4-wide node's
+    const __m128 limit_t = _mm_set1_ps(tmax);
+    const char* const rows = reinterpret_cast<const char*>(&n.box[0][0][0]);
+    const auto row = [rows](ptrdiff_t offset4, int g) {
+      return _mm_load_ps(reinterpret_cast<const float*>(rows + offset4 * kScale) + g);
+    };
     unsigned mask = 0;
     for (int g = 0; g < W; g += 4) {
-      __m128 tn = tmin4_, tf = _mm_set1_ps(INFINITY);
+      __m128 tn_a[3], tf_a[3];
       for (int a = 0; a < 3; ++a) {
-        const __m128 near = _mm_load_ps(&n.box[a][near_side_[a]][g]);
-        const __m128 far = _mm_load_ps(&n.box[a][1 - near_side_[a]][g]);
-        tn = _mm_max_ps(tn, _mm_mul_ps(_mm_sub_ps(near, o_lanes_[a]), inv_lanes_[a]));
-        tf = _mm_min_ps(tf, _mm_mul_ps(_mm_sub_ps(far, o_lanes_[a]), inv_lanes_[a]));
+        tn_a[a] = _mm_mul_ps(_mm_sub_ps(row(wide_near_[a], g), o_lanes_[a]), inv_lanes_[a]);
+        tf_a[a] = _mm_mul_ps(_mm_sub_ps(row(wide_far_[a], g), o_lanes_[a]), inv_lanes_[a]);
       }
+      const __m128 tn = _mm_max_ps(_mm_max_ps(tmin4_, tn_a[0]), _mm_max_ps(tn_a[1], tn_a[2]));
+      const __m128 tf = _mm_min_ps(tf_a[0], _mm_min_ps(tf_a[1], tf_a[2]));
       _mm_storeu_ps(entry + g, tn);
-      const __m128 limit = _mm_min_ps(_mm_mul_ps(tf, widen), limit_t);
-      mask |= static_cast<unsigned>(_mm_movemask_ps(_mm_cmple_ps(tn, limit))) << g;
+      const __m128 met = _mm_and_ps(_mm_cmple_ps(tn, _mm_mul_ps(tf, widen4_)), _mm_cmple_ps(tn, limit_t));
+      mask |= static_cast<unsigned>(_mm_movemask_ps(met)) << g;
     }
     return mask & ((1u << n.children) - 1u);
   }
 #endif
 
 #if defined(__x86_64__) && defined(__GNUC__)
-  /// The 8-wide test in one AVX2 vector (the same arithmetic, lane for lane;
-  /// no FMA, so nothing is contracted). Only on a host with AVX2
+  /// The 8-wide test in one AVX2 vector (the same arithmetic, lane for lane,
+  /// as hits_wide_sse2; no FMA, so nothing is contracted). Only on a host with AVX2
   /// (host_has_avx2()); the searches choose it once per ray.
   __attribute__((target("avx2"))) unsigned hits_avx2(const WideBvhNode<8>& n, float tmax,
                                                                       float* entry) const {
-    __m256 tn = _mm256_set1_ps(tmin_), tf = _mm256_set1_ps(INFINITY);
-    for (int a = 0; a < 3; ++a) {
+    const char* const rows = reinterpret_cast<const char*>(&n.box[0][0][0]);
+    __m256 tn_a[3], tf_a[3];
+    for (int a = 0; a < 3; ++a) {  // an 8-wide node's rows are twice a 4-wide node's
       const __m256 o = _mm256_set1_ps(o_[a]), inv = _mm256_set1_ps(inv_[a]);
-      const __m256 near = _mm256_load_ps(&n.box[a][near_side_[a]][0]);
-      const __m256 far = _mm256_load_ps(&n.box[a][1 - near_side_[a]][0]);
-      tn = _mm256_max_ps(tn, _mm256_mul_ps(_mm256_sub_ps(near, o), inv));
-      tf = _mm256_min_ps(tf, _mm256_mul_ps(_mm256_sub_ps(far, o), inv));
+      const __m256 near = _mm256_load_ps(reinterpret_cast<const float*>(rows + 2 * wide_near_[a]));
+      const __m256 far = _mm256_load_ps(reinterpret_cast<const float*>(rows + 2 * wide_far_[a]));
+      tn_a[a] = _mm256_mul_ps(_mm256_sub_ps(near, o), inv);
+      tf_a[a] = _mm256_mul_ps(_mm256_sub_ps(far, o), inv);
     }
+    const __m256 tn = _mm256_max_ps(_mm256_max_ps(_mm256_set1_ps(tmin_), tn_a[0]), _mm256_max_ps(tn_a[1], tn_a[2]));
+    const __m256 tf = _mm256_min_ps(tf_a[0], _mm256_min_ps(tf_a[1], tf_a[2]));
     _mm256_storeu_ps(entry, tn);
-    const __m256 limit = _mm256_min_ps(_mm256_mul_ps(tf, _mm256_set1_ps(kWiden)), _mm256_set1_ps(tmax));
-    const unsigned mask = static_cast<unsigned>(_mm256_movemask_ps(_mm256_cmp_ps(tn, limit, _CMP_LE_OQ)));
+    const __m256 met = _mm256_and_ps(_mm256_cmp_ps(tn, _mm256_mul_ps(tf, _mm256_set1_ps(kWiden)), _CMP_LE_OQ),
+                                     _mm256_cmp_ps(tn, _mm256_set1_ps(tmax), _CMP_LE_OQ));
+    const unsigned mask = static_cast<unsigned>(_mm256_movemask_ps(met));
     return mask & ((1u << n.children) - 1u);
   }
 #endif
@@ -243,7 +262,11 @@ class RayBoxTester {
   int near_side_[3];  ///< per axis: 0 (low bound) when the reciprocal is >= 0, else 1
 #if defined(__SSE2__)
   __m128 o_lanes_[3], inv_lanes_[3];    ///< per axis: o and 1/d in every lane (the wide test)
+  __m128 widen4_;                       ///< kWiden in every lane
 #endif
+  /// Per axis: byte offset in a 4-wide node's boxes of the slots' near (far)
+  /// bounds; twice that in an 8-wide node (WideBvhNode's box[axis][side][slot]).
+  ptrdiff_t wide_near_[3], wide_far_[3];
 };
 
 }  // namespace vbsim
