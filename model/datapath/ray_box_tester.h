@@ -85,7 +85,6 @@ class RayBoxTester {
       o_lanes_[a] = _mm_set1_ps(o_[a]);
       inv_lanes_[a] = _mm_set1_ps(inv_[a]);
     }
-    widen4_ = _mm_set1_ps(kWiden);
 #endif
   }
 
@@ -196,7 +195,7 @@ class RayBoxTester {
   template <int W>
   unsigned hits_wide_sse2(const WideBvhNode<W>& n, float tmax, float* entry) const {
     constexpr int kScale = W / 4;  // a W-wide node's rows are kScale times a 4-wide node's
-    const __m128 limit_t = _mm_set1_ps(tmax);
+    const __m128 widen = _mm_set1_ps(kWiden), limit_t = _mm_set1_ps(tmax);
     const char* const rows = reinterpret_cast<const char*>(&n.box[0][0][0]);
     const auto row = [rows](ptrdiff_t offset4, int g) {
       return _mm_load_ps(reinterpret_cast<const float*>(rows + offset4 * kScale) + g);
@@ -211,7 +210,7 @@ class RayBoxTester {
       const __m128 tn = _mm_max_ps(_mm_max_ps(tmin4_, tn_a[0]), _mm_max_ps(tn_a[1], tn_a[2]));
       const __m128 tf = _mm_min_ps(tf_a[0], _mm_min_ps(tf_a[1], tf_a[2]));
       _mm_storeu_ps(entry + g, tn);
-      const __m128 met = _mm_and_ps(_mm_cmple_ps(tn, _mm_mul_ps(tf, widen4_)), _mm_cmple_ps(tn, limit_t));
+      const __m128 met = _mm_and_ps(_mm_cmple_ps(tn, _mm_mul_ps(tf, widen)), _mm_cmple_ps(tn, limit_t));
       mask |= static_cast<unsigned>(_mm_movemask_ps(met)) << g;
     }
     return mask & ((1u << n.children) - 1u);
@@ -262,7 +261,6 @@ class RayBoxTester {
   int near_side_[3];  ///< per axis: 0 (low bound) when the reciprocal is >= 0, else 1
 #if defined(__SSE2__)
   __m128 o_lanes_[3], inv_lanes_[3];    ///< per axis: o and 1/d in every lane (the wide test)
-  __m128 widen4_;                       ///< kWiden in every lane
 #endif
   /// Per axis: byte offset in a 4-wide node's boxes of the slots' near (far)
   /// bounds; twice that in an 8-wide node (WideBvhNode's box[axis][side][slot]).
