@@ -157,7 +157,8 @@ class RayBoxTester {
   /// Tests the used slots of wide node `n` against [tmin, tmax]: bit c of the
   /// result is set when slot c's box is met, entry[c] where the ray enters it
   /// (clamped to tmin; written for every slot, meaningful only when bit c is
-  /// set). The same arithmetic as the two-child test, box by box.
+  /// set); no bit at or above n.children is ever set. The same arithmetic as
+  /// the two-child test, box by box.
   template <int W>
   unsigned hits(const WideBvhNode<W>& n, float tmax, float* entry) const {
 #if defined(__SSE2__)
@@ -191,7 +192,10 @@ class RayBoxTester {
   /// dependency chain: no distance is NaN (1/d is finite and non-zero, an
   /// unused slot's infinite bounds give infinite distances), so these are the
   /// scalar form's values (a zero's sign aside, which no comparison sees) and
-  /// the same mask.
+  /// the same mask. Slots at or above n.children are not masked off here, as
+  /// the scalar form does: they hold inverted boxes (WideBvhNode::clear), whose
+  /// entry is +inf or NaN and whose exit is -inf or NaN whatever the ray, so
+  /// neither comparison passes (one step less on each node step's chain).
   template <int W>
   unsigned hits_wide_sse2(const WideBvhNode<W>& n, float tmax, float* entry) const {
     constexpr int kScale = W / 4;  // a W-wide node's rows are kScale times a 4-wide node's
@@ -213,7 +217,7 @@ class RayBoxTester {
       const __m128 met = _mm_and_ps(_mm_cmple_ps(tn, _mm_mul_ps(tf, widen)), _mm_cmple_ps(tn, limit_t));
       mask |= static_cast<unsigned>(_mm_movemask_ps(met)) << g;
     }
-    return mask & ((1u << n.children) - 1u);
+    return mask;
   }
 #endif
 
@@ -237,8 +241,7 @@ class RayBoxTester {
     _mm256_storeu_ps(entry, tn);
     const __m256 met = _mm256_and_ps(_mm256_cmp_ps(tn, _mm256_mul_ps(tf, _mm256_set1_ps(kWiden)), _CMP_LE_OQ),
                                      _mm256_cmp_ps(tn, _mm256_set1_ps(tmax), _CMP_LE_OQ));
-    const unsigned mask = static_cast<unsigned>(_mm256_movemask_ps(met));
-    return mask & ((1u << n.children) - 1u);
+    return static_cast<unsigned>(_mm256_movemask_ps(met));  // unused slots never met (hits_wide_sse2)
   }
 #endif
 

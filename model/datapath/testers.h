@@ -79,9 +79,10 @@ inline ThreeHalfPlaneTester::ThreeHalfPlaneTester(const Ray& ray) : o_(ray.o), t
   static constexpr int kNext[3] = {1, 2, 0};
   const float d[3] = {ray.d.x, ray.d.y, ray.d.z};
   kz_ = max_dimension(ray.d);
-  kx_ = kNext[kz_];
-  ky_ = kNext[kx_];
-  if (d[kz_] < 0.0f) std::swap(kx_, ky_);  // keeps the winding of the projection
+  const int next = kNext[kz_], after = kNext[next];
+  const bool flip = d[kz_] < 0.0f;  // swapped: keeps the winding of the projection
+  kx_ = flip ? after : next;
+  ky_ = flip ? next : after;
 #if defined(__SSE2__)
   // The three quotients in one vector division (each lane rounds as its own division would).
   alignas(16) float q[4];

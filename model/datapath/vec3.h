@@ -33,8 +33,12 @@ inline bool is_finite(Vec3f a) {
 }
 /// Index of the component with the largest magnitude (0, 1 or 2).
 inline int max_dimension(Vec3f a) {
-  Vec3f m = abs(a);
-  return m.x > m.y ? (m.x > m.z ? 0 : 2) : (m.y > m.z ? 1 : 2);
+  const Vec3f m = abs(a);
+  // x > y ? (x > z ? 0 : 2) : (y > z ? 1 : 2), as selects rather than branches
+  const bool x_over_y = m.x > m.y;
+  const int xy = x_over_y ? 0 : 1;
+  const float m_xy = x_over_y ? m.x : m.y;
+  return m_xy > m.z ? xy : 2;
 }
 
 }  // namespace vbsim

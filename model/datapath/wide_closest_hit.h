@@ -46,8 +46,7 @@ inline const std::vector<BvhNode8>& wide_nodes<8>(const Bvh& bvh) { return bvh.n
 template <int W>
 __attribute__((always_inline)) inline void prefetch_node(const WideBvhNode<W>* nodes, uint32_t index,
                                                          uint32_t count) {
-  if (count != 0u) return;
-  const char* const p = reinterpret_cast<const char*>(nodes + index);
+  const char* const p = reinterpret_cast<const char*>(nodes + (count != 0u ? 0u : index));  // a leaf: the root, held anyway
   __builtin_prefetch(p);
   __builtin_prefetch(p + 64);
 }

@@ -12,7 +12,9 @@
 //   then  4 bytes      children uint32: slots in use, 2..W, the first ones
 //   then  padding to 128 bytes (W 4) or 256 bytes (W 8)
 // An unused slot holds an inverted box (low +inf, high -inf), which no ray
-// meets, and reference {0, 0}; readers also mask slots >= children.
+// meets, and reference {0, 0}. The functional search's vector box tests rely
+// on that (they do not mask slots >= children); the scalar form and the
+// timing model's box unit mask them as well.
 // Slots are in the order a depth-first walk of the binary tree they were
 // collapsed from meets the subtrees (scene/bvh_collapse.h).
 #pragma once

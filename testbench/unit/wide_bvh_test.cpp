@@ -216,6 +216,61 @@ TEST_CASE("the wide box test answers as the one-box test does, slot by slot", "[
   CHECK(met > 1000);  // the comparison covered met boxes, not only misses (of ~275,000 slots)
 }
 
+namespace {
+
+/// The vector forms' masks against the scalar form's (which masks slots >=
+/// children off) for nodes of 1 .. W used slots, every unused slot cleared:
+/// origins inside, outside, far away and infinite, directions with zero,
+/// negative zero and tiny components, every tmin / tmax pair below.
+template <int W>
+void check_unused_slots_never_met() {
+  const float inf = INFINITY;
+  const float origins[] = {0.0f, 0.5f, -2.0f, 3e30f, -inf};
+  const float directions[] = {1.0f, -3.0f, 0.0f, -0.0f, 1e-20f};
+  const float tmins[] = {0.0f, 0.5f};
+  const float tmaxes[] = {inf, 1.0f, 1e-3f};
+  uint64_t met = 0;
+  for (int used = 1; used <= W; ++used) {
+    WideBvhNode<W> n;
+    n.clear();
+    for (int c = 0; c < used; ++c) {
+      const float lo = -1.0f + 0.25f * static_cast<float>(c);
+      n.set_child(c, Bounds3f{{lo, lo, lo}, {lo + 1.5f, lo + 1.5f, lo + 1.5f}}, BvhRef{static_cast<uint32_t>(c), 1});
+    }
+    n.children = static_cast<uint32_t>(used);
+    for (float ox : origins)
+      for (float oy : origins)
+        for (float dx : directions)
+          for (float dy : directions)
+            for (float dz : directions)
+              for (float tmin : tmins)
+                for (float tmax : tmaxes) {
+                  Ray ray;
+                  ray.o = {ox, oy, 0.25f};
+                  ray.d = {dx, dy, dz};
+                  ray.tmin = tmin;
+                  const RayBoxTester box(ray);
+                  alignas(32) float entry[W], scalar_entry[W];
+                  const unsigned mask = box.hits(n, tmax, entry);
+                  CHECK((mask >> used) == 0u);
+                  CHECK(mask == box.hits_wide_scalar(n, tmax, scalar_entry));
+#if defined(__x86_64__) && defined(__GNUC__)
+                  if constexpr (W == 8)
+                    if (host_has_avx2()) CHECK(box.hits_avx2(n, tmax, entry) == mask);
+#endif
+                  met += static_cast<unsigned>(__builtin_popcount(mask));
+                }
+  }
+  CHECK(met > 1000);  // used slots were met too, so a mask of 0 everywhere would fail above
+}
+
+}  // namespace
+
+TEST_CASE("an unused slot of a wide node is never met, whatever the ray", "[bvh][wide][box]") {
+  check_unused_slots_never_met<4>();
+  check_unused_slots_never_met<8>();
+}
+
 TEST_CASE("closest and any hits do not depend on the node width", "[bvh][wide]") {
   const Scene bunny = load_scene(test::kBunnyPath);
   Bvh trees[3];
