@@ -18,7 +18,7 @@ CycleBenchResult run_cycle_bench(const Scene& scene, const ReplayOptions& opt, c
   const Bvh bvh = build_bvh(scene, opt.bvh);
   res.bvh_build_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   t0 = std::chrono::steady_clock::now();
-  const EmbreeReference embree(scene);
+  const EmbreeReference embree(scene, p.embree_accel);
   res.embree_build_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
   std::vector<int32_t> ours(rays.size()), theirs;

@@ -57,7 +57,7 @@ BenchResult run_functional_bench(const Scene& scene, const ReplayOptions& opt, c
   const Bvh bvh = build_bvh(scene, opt.bvh);
   res.bvh_build_s = seconds_since(t0);
   t0 = Clock::now();
-  const EmbreeReference embree(scene);
+  const EmbreeReference embree(scene, p.embree_accel);
   res.embree_build_s = seconds_since(t0);
 
   std::vector<int32_t> ours(rays.size()), theirs(rays.size());

@@ -3,6 +3,7 @@
 // one thread. A benchmark, not a test: it reports, it asserts nothing.
 #pragma once
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -18,6 +19,9 @@ struct BenchParams {
   int64_t rays = 200000;
   uint64_t seed = 1;
   int repeats = 3;  ///< each side is timed this many times; the best run counts
+  /// Embree's triangle acceleration structure (EmbreeReference's tri_accel);
+  /// empty: Embree's choice for the host.
+  std::string embree_accel;
 };
 
 struct BenchResult {

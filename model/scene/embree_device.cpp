@@ -23,8 +23,9 @@ const char* error_name(RTCError code) {
 
 }  // namespace
 
-EmbreeDevice::EmbreeDevice() {
-  device_ = rtcNewDevice("threads=1,verbose=0");
+EmbreeDevice::EmbreeDevice(const std::string& settings) {
+  const std::string config = settings.empty() ? "threads=1,verbose=0" : "threads=1,verbose=0," + settings;
+  device_ = rtcNewDevice(config.c_str());
   if (device_ == nullptr)
     throw SceneError(fmt::format("Embree rtcNewDevice failed: {}", error_name(rtcGetDeviceError(nullptr))));
   rtcSetDeviceErrorFunction(device_, &EmbreeDevice::on_error, this);

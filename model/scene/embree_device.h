@@ -15,7 +15,10 @@ namespace vbsim {
 class EmbreeDevice {
  public:
   /// Creates the device; throws SceneError when Embree cannot start.
-  EmbreeDevice();
+  /// `settings`: more of Embree's device configuration, appended to
+  /// "threads=1,verbose=0" (Embree ignores a key it does not know: callers
+  /// pass only settings they have checked).
+  explicit EmbreeDevice(const std::string& settings = "");
   ~EmbreeDevice();
   EmbreeDevice(const EmbreeDevice&) = delete;
   EmbreeDevice& operator=(const EmbreeDevice&) = delete;

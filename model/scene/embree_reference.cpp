@@ -1,5 +1,9 @@
 #include "scene/embree_reference.h"
 
+#include <cctype>
+
+#include <fmt/format.h>
+
 namespace vbsim {
 
 namespace {
@@ -36,9 +40,22 @@ void attach_triangles(const Scene& scene, EmbreeDevice& device, RTCScene target)
   rtcAttachGeometryByID(target, geometry.geometry, 0);
 }
 
+/// The device settings that select `tri_accel` (empty: none); throws
+/// SceneError for a name that could carry other settings.
+std::string accel_settings(const std::string& tri_accel) {
+  if (tri_accel.empty()) return "";
+  for (char c : tri_accel)
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '.' && c != '_')
+      throw SceneError(fmt::format("Embree triangle acceleration structure '{}': only letters, digits, '.' and '_' "
+                                   "make a name (e.g. bvh4.triangle4v)",
+                                   tri_accel));
+  return "tri_accel=" + tri_accel;
+}
+
 }  // namespace
 
-EmbreeReference::EmbreeReference(const Scene& scene) : device_(std::make_unique<EmbreeDevice>()) {
+EmbreeReference::EmbreeReference(const Scene& scene, const std::string& tri_accel)
+    : device_(std::make_unique<EmbreeDevice>(accel_settings(tri_accel))) {
   scene_ = rtcNewScene(device_->get());
   device_->check("rtcNewScene");
   try {

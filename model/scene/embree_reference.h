@@ -3,7 +3,9 @@
 // speed benchmark.
 //
 // Contract: one RTC_GEOMETRY_TYPE_TRIANGLE geometry whose primID is the scene's
-// triangle id, built with RTC_SCENE_FLAG_ROBUST and RTC_BUILD_QUALITY_HIGH.
+// triangle id, built with RTC_SCENE_FLAG_ROBUST and RTC_BUILD_QUALITY_HIGH, in
+// the acceleration structure Embree picks for the host (BVH8 of Triangle4v on
+// one with AVX) unless the caller names another.
 // Embree skips triangles it deems invalid (a vertex coordinate with magnitude
 // above about 1.8e18, or non-finite); those are never reported.
 #pragma once
@@ -11,6 +13,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <string>
 
 #include "datapath/vec3.h"
 #include "scene/embree_device.h"
@@ -22,7 +25,11 @@ class EmbreeReference {
  public:
   /// Builds Embree's acceleration structure over `scene` (copied; the scene may
   /// be destroyed afterwards). Throws SceneError if Embree fails.
-  explicit EmbreeReference(const Scene& scene);
+  /// `tri_accel`: Embree's name of the triangle acceleration structure to build
+  /// (its tri_accel setting, e.g. "bvh4.triangle4v" for a 4-wide tree); empty:
+  /// Embree's choice. A name Embree does not know is a SceneError, as is one
+  /// with characters other than letters, digits, '.' and '_'.
+  explicit EmbreeReference(const Scene& scene, const std::string& tri_accel = "");
   ~EmbreeReference();
   EmbreeReference(const EmbreeReference&) = delete;
   EmbreeReference& operator=(const EmbreeReference&) = delete;

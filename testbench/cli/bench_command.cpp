@@ -26,6 +26,7 @@ struct BenchArgs {
   int repeats = 3;
   std::string json;
   std::string preset;  // cycle mode
+  std::string embree_accel;
   bool quiet = false;
   MethodOptions method;
 };
@@ -45,6 +46,7 @@ void run_bench(const BenchArgs& a) {
   p.rays = a.rays;
   p.seed = a.seed;
   p.repeats = a.repeats;
+  p.embree_accel = a.embree_accel;
   nlohmann::json j;
   BenchResult r;
   if (a.mode == "cycle") {
@@ -69,6 +71,7 @@ void run_bench(const BenchArgs& a) {
   j["triangles"] = scene.size();
   j["seed"] = a.seed;
   j["repeats"] = a.repeats;
+  j["embree_accel"] = a.embree_accel.empty() ? "default" : a.embree_accel;
   j["config"] = replay_config_json(opt);
   j["provenance"] = provenance_json({a.scene, a.method.config});
   if (!a.json.empty()) write_output_file(a.json, j.dump(2) + "\n", "bench JSON");
@@ -76,7 +79,8 @@ void run_bench(const BenchArgs& a) {
   fmt::print("vbsim bench ({}, {} rays, {} triangles, method {}, tester {}, best of {})\n", a.mode,
              r.rays, scene.size(), opt.method.name(), tester_name(opt.tester), a.repeats);
   fmt::print("  vbsim   {:>12.0f} rays/s   ({} hits)\n", r.vbsim_rays_per_s, r.vbsim_hits);
-  fmt::print("  embree  {:>12.0f} rays/s   ({} hits)\n", r.embree_rays_per_s, r.embree_hits);
+  fmt::print("  embree  {:>12.0f} rays/s   ({} hits{})\n", r.embree_rays_per_s, r.embree_hits,
+             a.embree_accel.empty() ? "" : ", tri_accel " + a.embree_accel);
   fmt::print("  ratio   {:>12.3f}          (same triangle on {} of {} rays)\n", r.ratio, r.same_prim, r.rays);
   fmt::print("  vbsim work per ray: {:.1f} node fetches, {:.1f} box tests, {:.1f} triangle tests\n",
              r.node_fetches_per_ray, r.box_tests_per_ray, r.triangle_tests_per_ray);
@@ -95,6 +99,9 @@ void add_bench_command(CLI::App& app) {
   cmd->add_option("--repeats", args->repeats, "timed repetitions; the best counts")->capture_default_str();
   cmd->add_option("--json", args->json, "write the results JSON here");
   cmd->add_flag("--quiet,-q", args->quiet, "print nothing on success");
+  cmd->add_option("--embree-accel", args->embree_accel,
+                  "Embree's triangle acceleration structure to time against (its tri_accel setting, e.g. "
+                  "bvh4.triangle4v for a 4-wide tree) [Embree's choice for the host: bvh8.triangle4v with AVX]");
   add_method_options(*cmd, args->method, "none");
   cmd->callback([args] { run_bench(*args); });
 }

@@ -70,3 +70,17 @@ TEST_CASE("Moller-Trumbore closest hits agree with Embree on the bunny", "[close
   // drifts more on thin triangles (1.1e-5 relative seen on this seed).
   check_against_embree<MollerTrumboreTester>("moller-trumbore", 1e-4);
 }
+
+TEST_CASE("Embree's 4-wide tree answers as its default one, and a structure it lacks is an error", "[embree]") {
+  const Scene scene = load_scene(std::string(VBSIM_SOURCE_DIR) + "/traces/bunny/bunny.obj");
+  const EmbreeReference chosen(scene), four_wide(scene, "bvh4.triangle4v");
+  const std::vector<TraceRay> rays = bench_rays(scene, 4000, 3);
+  std::vector<int32_t> a, b;
+  time_embree(chosen, rays, a);
+  time_embree(four_wide, rays, b);
+  CHECK(a == b);
+  CHECK(std::count(a.begin(), a.end(), -1) < 3000);  // the rays hit, too
+  CHECK_THROWS_WITH(EmbreeReference(scene, "bvh4.nonesuch"),
+                    Catch::Contains("unknown triangle acceleration structure bvh4.nonesuch"));
+  CHECK_THROWS_WITH(EmbreeReference(scene, "bvh4.triangle4v,threads=2"), Catch::Contains("only letters, digits"));
+}
