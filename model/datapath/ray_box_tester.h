@@ -189,13 +189,13 @@ class RayBoxTester {
   /// rows are read at the byte offsets the constructor chose by the sign of
   /// 1/d (wide_near_ / wide_far_). The maxima and minima are taken as a tree
   /// and "entry <= min(exit * widen, tmax)" as two comparisons, for a shorter
-  /// dependency chain: no distance is NaN (1/d is finite and non-zero, an
-  /// unused slot's infinite bounds give infinite distances), so these are the
-  /// scalar form's values (a zero's sign aside, which no comparison sees) and
-  /// the same mask. Slots at or above n.children are not masked off here, as
-  /// the scalar form does: they hold inverted boxes (WideBvhNode::clear), whose
-  /// entry is +inf or NaN and whose exit is -inf or NaN whatever the ray, so
-  /// neither comparison passes (one step less on each node step's chain).
+  /// dependency chain: no used slot's distance is NaN (1/d is finite and
+  /// non-zero, the origin finite), so these are the scalar form's values (a
+  /// zero's sign aside, which no comparison sees) and the same mask. Slots at
+  /// or above n.children are not masked off here, as the scalar form does:
+  /// they hold inverted boxes (WideBvhNode::clear), whose entry is +inf (NaN
+  /// for an infinite origin) and whose exit is -inf (or NaN) whatever the ray,
+  /// so neither comparison passes (one step less on each node step's chain).
   template <int W>
   unsigned hits_wide_sse2(const WideBvhNode<W>& n, float tmax, float* entry) const {
     constexpr int kScale = W / 4;  // a W-wide node's rows are kScale times a 4-wide node's

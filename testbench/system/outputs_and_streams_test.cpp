@@ -136,7 +136,7 @@ TEST_CASE("check and bench take -q, score and fit say why a pipe cannot be read"
   r = run_vbsim("bench --rays 50 --repeats 1 --embree-accel bvh4.triangle4v");
   CHECK(r.exit_code == 0);
   CHECK_THAT(r.output, Catch::Contains("tri_accel bvh4.triangle4v") && Catch::Contains("same triangle on 50 of 50"));
-  r = run_vbsim("bench --rays 50 --repeats 1 --embree-accel bvh4.nonesuch -q");  // Embree ignores no name it lacks
+  r = run_vbsim("bench --rays 50 --repeats 1 --embree-accel bvh4.nonesuch -q");  // not a silent fallback
   CHECK(r.exit_code != 0);
   CHECK_THAT(r.output, Catch::Contains("unknown triangle acceleration structure bvh4.nonesuch"));
   r = run_vbsim_bash("score <(cat " + kTrace + ") --methods tmin --testers three-half-plane -q");
