@@ -102,8 +102,8 @@ __attribute__((always_inline)) inline bool take_candidate(Hit h, const BvhTriang
 /// search_leaf four triangles at a time: each group is tested once against
 /// cull_limit(tmax) (no later candidate_limit in the leaf exceeds it, as tmax
 /// only shrinks), then its candidates are taken in order, each held again to
-/// the limit of its turn (LaneHits::below: the tester's own upper-bound checks,
-/// so the answer is intersect()'s with that limit); a lane that needs the
+/// the limit of its turn (LaneHits::below: the tester's own upper-bound checks
+/// and its division, so the answer is intersect()'s with that limit); a lane that needs the
 /// tester's exact redo is tested by intersect() itself.
 template <class Tester>
 __attribute__((always_inline)) inline bool search_leaf_lanes(const BvhTriangle* tris, const TriangleLanes& lanes,

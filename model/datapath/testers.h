@@ -7,6 +7,7 @@
 // (1 when dot(d, Ng) < 0), and leaves hit.prim alone. Both faces are tested
 // (no culling). A triangle whose plane contains the ray is not hit.
 #pragma once
+#include <cmath>
 #include <string>
 #include <utility>
 
@@ -41,16 +42,26 @@ class ThreeHalfPlaneTester {
 #if defined(__SSE2__)  // the four-lane form (a search looks for LaneHits: search_rules.h)
   /// What intersect_lanes answers for up to four triangles (lanes 0..3).
   struct LaneHits {
-    unsigned met = 0;   ///< bit l: intersect(triangle l, bound) would be true (its other fields valid)
+    /// Bit l: triangle l passes every check intersect(triangle l, bound) makes
+    /// before its division (the edge signs, det != 0, the scaled interval); its
+    /// other fields are valid. below() makes the rest.
+    unsigned met = 0;
     unsigned redo = 0;  ///< bit l: an edge function came out exactly 0: ask intersect() itself
-    alignas(16) float t[4], e_v[4], e_w[4], det[4], t_signed[4], abs_det[4];
-    /// For a lane of `met`: whether it is also a hit below `tmax` <= the bound
-    /// (intersect()'s two upper-bound checks again, with `tmax`).
-    bool below(int l, float tmax) const { return t_signed[l] < tmax * abs_det[l] && t[l] < tmax; }
-    /// intersect()'s hit for a lane of `met`.
+    alignas(16) float t_scaled[4], e_v[4], e_w[4], det[4];
+    float tmin = 0;  ///< the ray's tmin
+    /// For a lane of `met` and `tmax` <= the bound: intersect(triangle l, tmax)'s
+    /// answer (its scaled upper check with `tmax`, then t = t_scaled / det
+    /// inside (tmin, tmax)). The division is left to a lane that gets this far
+    /// (one in several), off the vector pass's dependency chain.
+    bool below(int l, float tmax) const {
+      const float abs_det = std::fabs(det[l]), t_signed = det[l] < 0.0f ? -t_scaled[l] : t_scaled[l];
+      const float t = t_scaled[l] / det[l];
+      return t_signed < tmax * abs_det && t > tmin && t < tmax;
+    }
+    /// intersect()'s hit for a lane of `met` that below() passed.
     Hit hit(int l) const {
       Hit h;
-      h.t = t[l];
+      h.t = t_scaled[l] / det[l];
       h.u = e_v[l] / det[l];
       h.v = e_w[l] / det[l];
       h.front = det[l] > 0.0f ? 1 : 0;

@@ -16,9 +16,10 @@
 namespace vbsim {
 
 #if defined(__SSE2__)
-// The same steps as intersect(), lane for lane: every product, difference and
-// sum in the same order, compared the same way (no FMA on the project's
-// x86-64 baseline, so nothing is contracted in either form).
+// The same steps as intersect(), lane for lane, up to its division: every
+// product, difference and sum in the same order, compared the same way (no FMA
+// on the project's x86-64 baseline, so nothing is contracted in either form).
+// The division and the checks on its quotient are LaneHits::below's.
 inline void ThreeHalfPlaneTester::intersect_lanes(const TriangleLanes& lanes, uint32_t first, int n, float bound,
                                            LaneHits& out) const {
   const float o[3] = {o_.x, o_.y, o_.z};
@@ -55,21 +56,18 @@ inline void ThreeHalfPlaneTester::intersect_lanes(const TriangleLanes& lanes, ui
   const __m128 sign = _mm_set1_ps(-0.0f);
   const __m128 abs_det = _mm_andnot_ps(sign, det);
   const __m128 t_signed = _mm_xor_ps(t_scaled, _mm_and_ps(_mm_cmplt_ps(det, zero), sign));
-  const __m128 t = _mm_div_ps(t_scaled, det);
   const __m128 tmin = _mm_set1_ps(tmin_), upper = _mm_set1_ps(bound);
   __m128 ok = _mm_andnot_ps(_mm_and_ps(any_neg, any_pos), _mm_cmpneq_ps(det, zero));
   ok = _mm_and_ps(ok, _mm_and_ps(_mm_cmpgt_ps(t_signed, _mm_mul_ps(tmin, abs_det)),
                                  _mm_cmplt_ps(t_signed, _mm_mul_ps(upper, abs_det))));
-  ok = _mm_and_ps(ok, _mm_and_ps(_mm_cmpgt_ps(t, tmin), _mm_cmplt_ps(t, upper)));
 
   out.redo = static_cast<unsigned>(_mm_movemask_ps(any_zero)) & used;
   out.met = static_cast<unsigned>(_mm_movemask_ps(ok)) & used & ~out.redo;
-  _mm_store_ps(out.t, t);
+  out.tmin = tmin_;
+  _mm_store_ps(out.t_scaled, t_scaled);
   _mm_store_ps(out.e_v, e_v);
   _mm_store_ps(out.e_w, e_w);
   _mm_store_ps(out.det, det);
-  _mm_store_ps(out.t_signed, t_signed);
-  _mm_store_ps(out.abs_det, abs_det);
 }
 #endif
 

@@ -84,7 +84,11 @@ __attribute__((always_inline)) inline Hit wide_search(const Bvh& bvh, const Ray&
     tc.stack_pops += pushes - static_cast<uint64_t>(sp);
     return best;
   };
+#if defined(__SSE2__)
+  if (!box.hits_sse2(bvh.root_bounds, cull_limit(tmax))) return finish();
+#else
   if (!box.hits(bvh.root_bounds, cull_limit(tmax))) return finish();
+#endif
   const WideBvhNode<W>* const nodes = wide_nodes<W>(bvh).data();
   const BvhTriangle* const tris = bvh.tris.data();
   const TriangleLanes* const lanes = bvh.triangle_lanes();

@@ -57,12 +57,17 @@ void apply_replay_config(const nlohmann::json& j, const std::string& file, Repla
             "low, medium, high");
     fb.integer("max_leaf_size", opt.bvh.max_leaf_size);
     fb.number("traversal_cost", opt.bvh.traversal_cost);
+    fb.integer("sah_block_size", opt.bvh.sah_block_size);
     fb.integer("width", opt.bvh.width);
     if (opt.bvh.width != 2 && opt.bvh.width != 4 && opt.bvh.width != 8)
       fail(file, "bvh.width", fmt::format("must be 2, 4 or 8, got {}", opt.bvh.width));
     if (!(opt.bvh.traversal_cost > 0 && opt.bvh.traversal_cost <= kMaxBvhTraversalCost))
       fail(file, "bvh.traversal_cost",
            fmt::format("must be in (0, {}], got {}", kMaxBvhTraversalCost, opt.bvh.traversal_cost));
+    if (!valid_sah_block_size(opt.bvh.sah_block_size))
+      fail(file, "bvh.sah_block_size",
+           fmt::format("must be 1, 2, 4, 8 or 16 (a power of two up to {}), got {}", kMaxBvhSahBlockSize,
+                       opt.bvh.sah_block_size));
     if (opt.bvh.max_leaf_size < 1 || opt.bvh.max_leaf_size > kMaxBvhLeafSize)
       fail(file, "bvh.max_leaf_size", fmt::format("must be 1 to {}, got {}", kMaxBvhLeafSize, opt.bvh.max_leaf_size));
     if (const auto* lp = fb.get("low_precision")) {  // present: nodes of two precisions (scene/bvh_precision.h)

@@ -174,6 +174,7 @@ nlohmann::json bvh_options_json(const BvhBuildOptions& b) {
                       {"quality", bvh_quality_name(b.quality)},
                       {"max_leaf_size", b.max_leaf_size},
                       {"traversal_cost", b.traversal_cost},
+                      {"sah_block_size", b.sah_block_size},
                       {"width", b.width}};
   if (b.low_precision.enabled)
     j["low_precision"] = {{"mantissa_bits", b.low_precision.mantissa_bits},

@@ -84,6 +84,7 @@ bool parse_bvh_builder(const std::string& s, BvhBuilder& out);
 /// and the largest SAH traversal cost build_bvh takes.
 constexpr int kMaxBvhLeafSize = 32;
 constexpr float kMaxBvhTraversalCost = 1000.0f;
+constexpr int kMaxBvhSahBlockSize = 16;
 
 /// Two node precisions, as rtcore-systemc's tree has (scene/bvh_precision.h).
 struct BvhPrecisionMarking {
@@ -103,6 +104,10 @@ struct BvhPrecisionMarking {
   }
 };
 
+/// Whether `n` may be BvhBuildOptions::sah_block_size: a power of two in
+/// 1..kMaxBvhSahBlockSize (Embree's builder takes powers of two only).
+inline bool valid_sah_block_size(int n) { return n >= 1 && n <= kMaxBvhSahBlockSize && (n & (n - 1)) == 0; }
+
 struct BvhBuildOptions {
   int max_leaf_size = 4;  ///< triangles per leaf at most (1..kMaxBvhLeafSize)
   BvhQuality quality = BvhQuality::High;  ///< Embree's builder only
@@ -117,9 +122,17 @@ struct BvhBuildOptions {
   /// (WideBvhNode, collapsed from the binary tree; scene/bvh_collapse.h).
   /// Nodes of two precisions are binary only.
   int width = 2;
+  /// Triangles the SAH prices as one test (Embree's sahBlockSize): a leaf of
+  /// n triangles costs ceil(n / sah_block_size) tests, and so does each side
+  /// of a split. 1 for a triangle unit that takes one triangle an operation
+  /// (the hardware model's); 4 as Embree prices its Triangle4 leaves, for a
+  /// tester that takes four at once (the functional search's four-lane test).
+  /// A power of two, 1..kMaxBvhSahBlockSize.
+  int sah_block_size = 1;
   bool operator==(const BvhBuildOptions& o) const {
     return max_leaf_size == o.max_leaf_size && quality == o.quality && builder == o.builder &&
-           traversal_cost == o.traversal_cost && low_precision == o.low_precision && width == o.width;
+           traversal_cost == o.traversal_cost && sah_block_size == o.sah_block_size &&
+           low_precision == o.low_precision && width == o.width;
   }
 };
 

@@ -17,6 +17,9 @@ void check_options(const BvhBuildOptions& options) {
   if (!(options.traversal_cost > 0 && options.traversal_cost <= kMaxBvhTraversalCost))
     throw std::invalid_argument(fmt::format("BvhBuildOptions.traversal_cost must be in (0, {}], got {}",
                                             kMaxBvhTraversalCost, options.traversal_cost));
+  if (!valid_sah_block_size(options.sah_block_size))
+    throw std::invalid_argument(fmt::format("BvhBuildOptions.sah_block_size must be a power of two in 1..{}, got {}",
+                                            kMaxBvhSahBlockSize, options.sah_block_size));
   if (options.width != 2 && options.width != 4 && options.width != 8)
     throw std::invalid_argument(fmt::format("BvhBuildOptions.width must be 2, 4 or 8, got {}", options.width));
   if (options.width != 2 && options.low_precision.enabled)

@@ -244,6 +244,7 @@ Bvh build_tree(const Scene& scene, const BvhBuildOptions& options) {
   args.maxLeafSize = static_cast<unsigned>(options.max_leaf_size);
   args.traversalCost = options.traversal_cost;
   args.intersectionCost = 1.0f;
+  args.sahBlockSize = static_cast<unsigned>(options.sah_block_size);
   args.bvh = handle.bvh;
   args.primitives = prims.data();
   args.primitiveCount = prims.size();

@@ -49,7 +49,8 @@ class SweepSahBuild {
   SweepSahBuild(const Scene& scene, const BvhBuildOptions& options)
       : scene_(scene),
         max_leaf_(static_cast<uint32_t>(options.max_leaf_size)),
-        traversal_cost_(options.traversal_cost) {}
+        traversal_cost_(options.traversal_cost),
+        block_(static_cast<uint32_t>(options.sah_block_size)) {}
 
   Bvh run();
 
@@ -78,6 +79,9 @@ class SweepSahBuild {
   const Scene& scene_;
   const uint32_t max_leaf_;
   const double traversal_cost_;
+  const uint32_t block_;  // triangles priced as one test
+  /// Tests `count` triangles cost: ceil(count / block_).
+  double blocks(uint32_t count) const { return double((count + block_ - 1) / block_); }
   std::vector<Bounds3f> boxes_;                 // by triangle id
   std::array<std::vector<uint32_t>, 3> order_;  // triangle ids by centroid on each axis
   std::vector<double> right_area_;              // by position: area of the box of [pos, end)
@@ -113,8 +117,8 @@ void SweepSahBuild::sweep(int axis, uint32_t begin, uint32_t end, Split& best) {
   Bounds3f left;
   for (uint32_t i = begin; i + 1 < end; ++i) {
     grow(left, boxes_[order[i]]);
-    const double k = double(i + 1 - begin);
-    const double cost = surface_area(left) * k + right_area_[i + 1] * (double(end - begin) - k);
+    const uint32_t k = i + 1 - begin;
+    const double cost = surface_area(left) * blocks(k) + right_area_[i + 1] * blocks(end - begin - k);
     if (cost < best.cost) best = {cost, axis, i + 1};
   }
 }
@@ -182,7 +186,7 @@ Bvh SweepSahBuild::run() {
     Split split;
     for (int axis = 0; axis < 3; ++axis) sweep(axis, task.begin, task.end, split);
     const double area = surface_area(task.box);
-    const bool leaf_cheaper = count * area <= traversal_cost_ * area + split.cost;
+    const bool leaf_cheaper = blocks(count) * area <= traversal_cost_ * area + split.cost;
     const uint32_t larger = std::max(split.pos - task.begin, task.end - split.pos);
     const bool too_deep = count > 1 && task.depth + median_levels(larger, max_leaf_) > kMaxSweepSahDepth;
     if (count <= max_leaf_ && (leaf_cheaper || too_deep)) {

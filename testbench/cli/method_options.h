@@ -24,6 +24,7 @@ struct MethodOptions {
   std::optional<std::string> bvh_builder, bvh_quality;
   std::optional<int> bvh_leaf_size, bvh_width;
   std::optional<float> bvh_traversal_cost;
+  std::optional<int> bvh_sah_block;
   int64_t parent_window = ParentRayStore::kDefaultWindow;  ///< --parent-window
   bool score_incomplete = false;  ///< --score-incomplete
 };

@@ -32,11 +32,13 @@ struct Build {
   bool marked = false;
   int width = 2;  ///< children per node (--bvh-width)
   bool narrow = false;  ///< marked nodes tested in the narrow format (rtcore's arithmetic)
+  int block = 1;        ///< triangles the SAH prices as one test (--bvh-sah-block)
   std::string options(const fs::path& dir, bool cycle) const {
     const std::string builder = std::string(quality) == "sweep-sah" ? " --bvh-builder sweep-sah"
                                                                      : std::string(" --bvh-quality ") + quality;
     std::string o = builder + " --bvh-leaf-size " + std::to_string(leaf) + " --bvh-traversal-cost " +
-                    std::to_string(cost) + " --bvh-width " + std::to_string(width);
+                    std::to_string(cost) + " --bvh-width " + std::to_string(width) + " --bvh-sah-block " +
+                    std::to_string(block);
     if (!marked) return o + (cycle ? " --preset small" : "");
     const fs::path cfg = dir / (narrow ? "narrow.json" : "marked.json");
     std::ofstream(cfg) << R"({"bvh": {"low_precision": {"mantissa_bits": 7, "t_trav_high": 0.5, "t_trav_low": 0.47,)"
@@ -81,7 +83,8 @@ void check_independent(const fs::path& trace, const fs::path& dir, const std::st
                           {"high", 16, 8},     {"medium", 32, 16},    {"sweep-sah", 4, 1},   {"sweep-sah", 16, 1},
                           {"sweep-sah", 16, 1, true}, {"high", 4, 1, true},
                           {"high", 4, 1, false, 4},  {"low", 1, 1, false, 8},  {"sweep-sah", 16, 1, false, 8},
-                          {"sweep-sah", 16, 1, true, 2, true}};
+                          {"sweep-sah", 16, 1, true, 2, true},
+                          {"high", 8, 2, false, 4, false, 4},  {"sweep-sah", 8, 1, false, 2, false, 4}};
   std::vector<nlohmann::json> reference;
   int n = 0;
   for (const Build& b : builds)

@@ -179,7 +179,26 @@ TEST_CASE("BVH build options: Embree's qualities, leaf sizes and traversal costs
   dear.traversal_cost = 8;
   CHECK(compute_bvh_stats(build_bvh(bunny, dear)).average_leaf_size >
         2 * compute_bvh_stats(build_bvh(bunny, cheap)).average_leaf_size);
+  // Triangles priced four at a time (Embree's Triangle4 pricing): fuller
+  // leaves and fewer nodes, with either builder; still a valid tree.
+  for (const BvhBuilder builder : {BvhBuilder::Embree, BvhBuilder::SweepSah}) {
+    INFO(bvh_builder_name(builder));
+    BvhBuildOptions one, four;
+    one.builder = four.builder = builder;
+    four.sah_block_size = 4;
+    one.max_leaf_size = four.max_leaf_size = 8;
+    const Bvh blocks = build_bvh(bunny, four);
+    check_structure(bunny, blocks, 8);
+    const BvhStats s1 = compute_bvh_stats(build_bvh(bunny, one)), s4 = compute_bvh_stats(blocks);
+    CHECK(s4.average_leaf_size > 1.5 * s1.average_leaf_size);
+    CHECK(s4.nodes < s1.nodes);
+  }
   BvhBuildOptions bad;
+  for (const int block : {0, 3, 32, -4}) {
+    bad.sah_block_size = block;
+    CHECK_THROWS_WITH(build_bvh(bunny, bad), Catch::Contains("sah_block_size"));
+  }
+  bad = {};
   bad.max_leaf_size = 33;
   CHECK_THROWS_AS(build_bvh(bunny, bad), std::invalid_argument);
   bad = {};

@@ -160,7 +160,8 @@ TEST_CASE("a replay config's bvh build options are read, checked and echoed", "[
   CHECK(opt.bvh.builder == BvhBuilder::Embree);  // the default
   const nlohmann::json echo = replay_config_json(opt)["bvh"];
   CHECK(echo == nlohmann::json::parse(
-                    R"({"builder": "embree", "quality": "low", "max_leaf_size": 16, "traversal_cost": 4.0, "width": 2})"));
+                    R"({"builder": "embree", "quality": "low", "max_leaf_size": 16, "traversal_cost": 4.0, "width": 2,
+                        "sah_block_size": 1})"));
   ReplayOptions back;
   apply_replay_config(nlohmann::json{{"bvh", echo}}, "f", back);
   CHECK(back.bvh == opt.bvh);
@@ -191,12 +192,23 @@ TEST_CASE("a replay config's bvh build options are read, checked and echoed", "[
   apply_replay_config(nlohmann::json{{"bvh", replay_config_json(wide)["bvh"]}}, "f", wide_back);
   CHECK(wide_back.bvh == wide.bvh);
   CHECK_FALSE(wide.bvh == opt.bvh);
+  // The SAH's block: read, echoed, read back.
+  ReplayOptions blocks;
+  apply_replay_config(nlohmann::json::parse(R"({"bvh": {"sah_block_size": 4}})"), "f", blocks);
+  CHECK(blocks.bvh.sah_block_size == 4);
+  CHECK(replay_config_json(blocks)["bvh"]["sah_block_size"] == 4);
+  ReplayOptions blocks_back;
+  apply_replay_config(nlohmann::json{{"bvh", replay_config_json(blocks)["bvh"]}}, "f", blocks_back);
+  CHECK(blocks_back.bvh == blocks.bvh);
+  CHECK_FALSE(blocks.bvh == ReplayOptions{}.bvh);
   for (const char* bad : {R"({"bvh": {"quality": "best"}})", R"({"bvh": {"max_leaf_size": 33}})",
                           R"({"bvh": {"traversal_cost": 0}})", R"({"bvh": {"leaves": 2}})",
                           R"({"bvh": {"builder": "sah"}})", R"({"bvh": {"low_precision": {"mantissa_bits": 23}}})",
                           R"({"bvh": {"low_precision": {"t_trav_low": -1}}})",
                           R"({"bvh": {"low_precision": {"bits": 7}}})", R"({"bvh": {"width": 3}})",
-                          R"({"bvh": {"width": 16}})", R"({"bvh": {"width": 4, "low_precision": {}}})"}) {
+                          R"({"bvh": {"width": 16}})", R"({"bvh": {"width": 4, "low_precision": {}}})",
+                          R"({"bvh": {"sah_block_size": 3}})", R"({"bvh": {"sah_block_size": 0}})",
+                          R"({"bvh": {"sah_block_size": 32}})", R"({"bvh": {"sah_block_size": 4.5}})"}) {
     INFO(bad);
     ReplayOptions o;
     CHECK_THROWS_WITH(apply_replay_config(nlohmann::json::parse(bad), "cfg.json", o),

@@ -106,6 +106,7 @@ TEST_CASE("slab test never culls a box the exact test meets, its forms agree bit
   for (int i = 0; i < 4000; ++i) {
     Vec3f o{coord(rng), coord(rng), coord(rng)}, d{coord(rng), coord(rng), coord(rng)};
     if (pick(rng) == 0) d[pick(rng) % 3] = 0.0f;  // axis-parallel in one component
+    if (i % 7 == 3) d[i % 3] = -0.0f;             // ... with a negative zero (its near side is the high bound)
     if (d == Vec3f{}) d = {1, 0, 0};
     const float tmax = pick(rng) < 2 ? 0.5f + unit(rng) : INFINITY;
     const Ray ray = make_ray(o, d, 0.0f, tmax);
@@ -170,3 +171,42 @@ TEST_CASE("the latched reciprocals are safe_reciprocal's, zeros and tiny compone
       if (std::fabs(x) < tiny) CHECK(got == std::copysign(expected_tiny, x));
     }
 }
+
+#if defined(__SSE2__)
+TEST_CASE("the one-box test in one SSE2 vector answers as the scalar one", "[closest_hit]") {
+  // The wide searches test the root box this way. Directions with +0, -0, tiny,
+  // huge and negative components; origins inside, outside, on a face and on a
+  // corner; flat and point boxes; intervals empty, closed on a face and open.
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> coord(-4, 4);
+  std::uniform_int_distribution<int> pick(0, 7);
+  const float special[] = {0.0f, -0.0f, 1e-20f, -1e-20f, 1e-18f, 3e38f, -3e38f, 1.0f, -1.0f};
+  int met = 0, missed = 0;
+  for (int i = 0; i < 20000; ++i) {
+    Vec3f lo{coord(rng), coord(rng), coord(rng)}, hi = lo;
+    for (int a = 0; a < 3; ++a)
+      if (pick(rng) != 0) hi[a] = lo[a] + std::abs(coord(rng));  // else flat on that axis
+    const Bounds3f b = box(lo, hi);
+    Vec3f o{coord(rng), coord(rng), coord(rng)};
+    if (pick(rng) == 0) o = lo;                                    // a corner
+    if (pick(rng) == 0) o[pick(rng) % 3] = hi[pick(rng) % 3 == 0 ? 0 : 1];  // sometimes on a face
+    Vec3f d{coord(rng), coord(rng), coord(rng)};
+    if (pick(rng) < 5) d = 0.5f * (lo + hi) - o;  // aimed at the box's centre
+    for (int a = 0; a < 3; ++a)
+      if (pick(rng) < 2) d[a] = special[static_cast<size_t>(pick(rng) + (i & 1))];
+    if (d == Vec3f{}) d = {0.0f, -0.0f, 1.0f};
+    const float tmin = pick(rng) < 2 ? 0.0f : std::abs(coord(rng));
+    const float tmaxes[] = {INFINITY, tmin, tmin + 0.5f, 100.0f};
+    const Ray ray = make_ray(o, d, tmin, INFINITY);
+    const RayBoxTester tester(ray);
+    for (float tmax : tmaxes) {
+      INFO("case " << i << " tmax " << tmax);
+      const bool scalar = tester.hits(b, tmax);
+      REQUIRE(tester.hits_sse2(b, tmax) == scalar);
+      (scalar ? met : missed) += 1;
+    }
+  }
+  CHECK(met > 7000);
+  CHECK(missed > 40000);
+}
+#endif

@@ -128,6 +128,29 @@ TEST_CASE("sweep SAH: two pairs of overlapping triangles give two leaves of two"
   CHECK((ones.tris[0].prim == 2 && ones.tris[1].prim == 3 && ones.tris[2].prim == 0 && ones.tris[3].prim == 1));
 }
 
+TEST_CASE("sweep SAH: triangles priced in blocks make the two pairs one leaf of four", "[bvh][sweep-sah]") {
+  // The scene of the test above. Blocks of four: the leaf of four costs one
+  // test, B(4) = 1; the best split 1 + (2 B(2) + 2 B(2)) / 22 = 1 + 4 / 22 > 1:
+  // one leaf, its triangles in x centroid order. Blocks of two: the leaf costs
+  // B(4) = 2 > 1 + 4 / 22, so the root splits; a pair's leaf costs B(2) = 1
+  // against 1 + (2 + 2) / 2 = 3: the tree of blocks of one.
+  const Scene pairs = make_scene({lower_half(10), upper_half(10), lower_half(0), upper_half(0)});
+  BvhBuildOptions four = sweep();
+  four.sah_block_size = 4;
+  const Bvh one_leaf = build_bvh(pairs, four);
+  check_structure(pairs, one_leaf, 4);
+  CHECK(one_leaf.nodes.empty());
+  CHECK((one_leaf.root.index == 0 && one_leaf.root.count == 4));
+  CHECK((one_leaf.tris[0].prim == 2 && one_leaf.tris[1].prim == 3 && one_leaf.tris[2].prim == 0 &&
+         one_leaf.tris[3].prim == 1));
+  BvhBuildOptions two = sweep();
+  two.sah_block_size = 2;
+  CHECK(same_tree(build_bvh(pairs, two), build_bvh(pairs, sweep())));
+  // A block of four at a traversal cost of 0.1: the split costs 0.1 + 4 / 22 < 1.
+  four.traversal_cost = 0.1f;
+  CHECK(build_bvh(pairs, four).nodes.size() == 1);
+}
+
 TEST_CASE("sweep SAH: boxes of no area are leaves, or split at the median when too many", "[bvh][sweep-sah]") {
   // Forty triangles collapsed onto one point: every cost is 0, so a node is a
   // leaf when it may be, else split at the median: 40, 20, 10, 5 and leaves of 2 or 3.

@@ -48,8 +48,9 @@ struct LaneTally {
 
 /// Tests `tris` (any count) four at a time against `ray` with upper bound
 /// `bound`, and requires of every lane what intersect() answers: a lane not
-/// flagged for the redo is met exactly when intersect() hits, with the same
-/// bits, and held to a smaller bound it answers as intersect() with that bound.
+/// flagged for the redo is met, and then below(bound), exactly when intersect()
+/// hits, with the same bits, and held to a smaller bound it answers as
+/// intersect() with that bound.
 void require_lanes_match(const Ray& ray, const std::vector<BvhTriangle>& tris, float bound, LaneTally& tally) {
   TriangleLanes lanes;
   lanes.fill(tris.data(), tris.size());
@@ -69,7 +70,9 @@ void require_lanes_match(const Ray& ray, const std::vector<BvhTriangle>& tris, f
         continue;
       }
       INFO("triangle " << g + static_cast<uint32_t>(l));
-      REQUIRE((((lh.met >> l) & 1u) != 0u) == hit);
+      const bool met = ((lh.met >> l) & 1u) != 0u;
+      if (hit) REQUIRE(met);  // met: every check before the division passed
+      REQUIRE((met && lh.below(l, bound)) == hit);
       if (!hit) {
         ++tally.missed;
         continue;
