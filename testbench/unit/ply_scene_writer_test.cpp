@@ -49,6 +49,7 @@ TEST_CASE("a binary PLY scene loads back bit for bit, in triangle order", "[scen
     CHECK(same_bits(scene.triangles[k].v2, tris[k].v2));
     for (int c = 0; c < 3; ++c) CHECK(same_bits(scene.normals[k][c], normals[k][c]));
   }
+  std::filesystem::remove(path);
 }
 
 TEST_CASE("a binary PLY scene without normals loads without normals", "[scene][ply]") {
@@ -58,6 +59,7 @@ TEST_CASE("a binary PLY scene without normals loads without normals", "[scene][p
   CHECK(scene.size() == 1);
   CHECK_FALSE(scene.has_normals());
   CHECK(geometric_normal(scene.triangles[0]).z > 0);  // winding kept
+  std::filesystem::remove(path);
 }
 
 TEST_CASE("the PLY writer names the file it cannot write", "[scene][ply]") {
@@ -73,7 +75,9 @@ TEST_CASE("a binary PLY scene whose first data byte is white space loads back bi
     float x;
     std::memcpy(&x, &bits, sizeof x);
     const Triangle tri{{x, 2.0f, 3.0f}, {4.0f, -5.0f, 6.0f}, {-7.0f, 8.0f, 9.5f}};
-    const auto path = (std::filesystem::temp_directory_path() / "vbsim_ply_first_byte.ply").string();
+    const auto path =
+        (std::filesystem::temp_directory_path() / ("vbsim_ply_first_byte_" + std::to_string(::getpid()) + ".ply"))
+            .string();
     write_ply_scene(path, {tri});
     const Scene scene = load_scene(path);
     INFO("first data byte " << low_byte);
@@ -81,5 +85,6 @@ TEST_CASE("a binary PLY scene whose first data byte is white space loads back bi
     CHECK(same_bits(scene.triangles[0].v0, tri.v0));
     CHECK(same_bits(scene.triangles[0].v1, tri.v1));
     CHECK(same_bits(scene.triangles[0].v2, tri.v2));
+    std::filesystem::remove(path);
   }
 }
