@@ -1,22 +1,20 @@
 // The binary PLY scene writer round-trips float32 geometry through assimp bit
 // for bit, in triangle order, with normals.
-#include <unistd.h>
-
 #include <catch2/catch.hpp>
 
 #include <cmath>
 #include <cstring>
-#include <filesystem>
 
 #include "gen/seeded_random.h"
 #include "scene/ply_scene_writer.h"
 #include "scene/scene.h"
+#include "trace_test_support.h"
 
 using namespace vbsim;
+using vbsim::test::same_bits;
+using vbsim::test::TempDir;
 
 namespace {
-bool same_bits(Vec3f a, Vec3f b) { return std::memcmp(&a, &b, sizeof a) == 0; }
-
 float random_float(SeededRandom& rng) {
   // Magnitudes 2^-40 .. 2^40 of both signs, including values that assimp's OBJ
   // decimal reader misrounds (|x| >= 1 with long fractions).
@@ -37,7 +35,8 @@ TEST_CASE("a binary PLY scene loads back bit for bit, in triangle order", "[scen
   }
   tris.push_back(Triangle{{1.1f, 2.2f, 3.3f}, {1.1f, 2.2f, 3.3f}, {1.1f, 2.2f, 3.3f}});  // degenerate: kept
   normals.push_back({Vec3f{0, 0, 1}, Vec3f{0, 0, 1}, Vec3f{0, 0, 1}});
-  const auto path = (std::filesystem::temp_directory_path() / ("vbsim_ply_roundtrip_" + std::to_string(::getpid()) + ".ply")).string();
+  const TempDir dir("ply-roundtrip");
+  const std::string path = dir.file("scene.ply");
   write_ply_scene(path, tris, normals);
   const Scene scene = load_scene(path);
   REQUIRE(scene.size() == static_cast<int32_t>(tris.size()));
@@ -49,17 +48,16 @@ TEST_CASE("a binary PLY scene loads back bit for bit, in triangle order", "[scen
     CHECK(same_bits(scene.triangles[k].v2, tris[k].v2));
     for (int c = 0; c < 3; ++c) CHECK(same_bits(scene.normals[k][c], normals[k][c]));
   }
-  std::filesystem::remove(path);
 }
 
 TEST_CASE("a binary PLY scene without normals loads without normals", "[scene][ply]") {
-  const auto path = (std::filesystem::temp_directory_path() / ("vbsim_ply_plain_" + std::to_string(::getpid()) + ".ply")).string();
+  const TempDir dir("ply-plain");
+  const std::string path = dir.file("scene.ply");
   write_ply_scene(path, {Triangle{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}});
   const Scene scene = load_scene(path);
   CHECK(scene.size() == 1);
   CHECK_FALSE(scene.has_normals());
   CHECK(geometric_normal(scene.triangles[0]).z > 0);  // winding kept
-  std::filesystem::remove(path);
 }
 
 TEST_CASE("the PLY writer names the file it cannot write", "[scene][ply]") {
@@ -75,9 +73,8 @@ TEST_CASE("a binary PLY scene whose first data byte is white space loads back bi
     float x;
     std::memcpy(&x, &bits, sizeof x);
     const Triangle tri{{x, 2.0f, 3.0f}, {4.0f, -5.0f, 6.0f}, {-7.0f, 8.0f, 9.5f}};
-    const auto path =
-        (std::filesystem::temp_directory_path() / ("vbsim_ply_first_byte_" + std::to_string(::getpid()) + ".ply"))
-            .string();
+    const TempDir dir("ply-first-byte");
+    const std::string path = dir.file("scene.ply");
     write_ply_scene(path, {tri});
     const Scene scene = load_scene(path);
     INFO("first data byte " << low_byte);
@@ -85,6 +82,5 @@ TEST_CASE("a binary PLY scene whose first data byte is white space loads back bi
     CHECK(same_bits(scene.triangles[0].v0, tri.v0));
     CHECK(same_bits(scene.triangles[0].v1, tri.v1));
     CHECK(same_bits(scene.triangles[0].v2, tri.v2));
-    std::filesystem::remove(path);
   }
 }
