@@ -3,7 +3,7 @@
 // suspects, stack pushes and pops) times the datapath's operations per step
 // (datapath_ops.h, method_costs.h) priced by a technology file. No memory and
 // no leakage: the functional replay's energy, and the operation part of the
-// cycle-level model's (hw/hw_energy.h adds memory and leakage).
+// cycle-level model's (hw/observe/hw_energy.h adds memory and leakage).
 #pragma once
 #include <nlohmann/json.hpp>
 

@@ -21,7 +21,7 @@
 //                                       `forward`; the built-in one stays as result_accounting for
 //                                       the run's cycles and latencies; verdicts are the replacement's)
 //
-//   ray_source       RaySourceIf       (hw/ray_source_if.h) reads the feed, emits each ray through
+//   ray_source       RaySourceIf       (hw/source/ray_source_if.h) reads the feed, emits each ray through
 //                                       the replayer it is given (FunctionalReplayer::emit, in trace
 //                                       order) and dispatches it through SourceHost; the built-in
 //                                       source's statistics (hw.source's counts, hw.emission) are
@@ -30,9 +30,9 @@
 // The memory behind the built-in L2 is replaced at the TLM-2.0 socket instead
 // (Accelerator::memory_socket with external_memory set; refused with l2_cache). A replaced unit
 // decides when its operations happen and what they answer (the operation
-// carries its payload: hw/unit_operations.h); a replacement that answers as
+// carries its payload: hw/core/unit_operations.h); a replacement that answers as
 // the datapath does keeps every hit, one that computes otherwise (e.g.
-// hw/examples/reduced_precision_units.h) changes what the rays hit.
+// testbench/examples/reduced_precision/reduced_precision_units.h) changes what the rays hit.
 #pragma once
 #include <cstdint>
 #include <functional>

@@ -5,10 +5,10 @@
 #include <optional>
 
 #include "hw/accelerator.h"
-#include "hw/hw_energy.h"
+#include "hw/observe/hw_energy.h"
+#include "hw/observe/timeline_recorder.h"
+#include "hw/observe/vcd_recorder.h"
 #include "hw/simulation_context.h"
-#include "hw/timeline_recorder.h"
-#include "hw/vcd_recorder.h"
 #include "replay/ray_conservation.h"
 
 namespace vbsim::hw {

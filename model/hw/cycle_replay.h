@@ -13,9 +13,9 @@
 
 #include "energy/tech_file.h"
 #include "hw/accelerator_units.h"
-#include "hw/cycle_engine.h"
 #include "hw/hw_config.h"
-#include "hw/ray_feed.h"
+#include "hw/scheduler/cycle_engine.h"
+#include "hw/source/ray_feed.h"
 #include "replay/replay_options.h"
 #include "replay/replay_stats.h"
 #include "scene/bvh.h"
@@ -28,7 +28,7 @@ struct TraceWindow {
   std::string path;         ///< output file (empty: none)
   uint64_t first = 0;       ///< first cycle
   uint64_t cycles = 2000;   ///< cycles in the window
-  std::string scope;        ///< the instances kept, a TraceScope (hw/trace_scope.h; empty: all)
+  std::string scope;        ///< the instances kept, a TraceScope (hw/observe/trace_scope.h; empty: all)
 };
 
 struct CycleRunOptions {
@@ -38,7 +38,7 @@ struct CycleRunOptions {
   TraceWindow vcd;        ///< per-instance values at cycle resolution (VCD)
   TraceWindow timeline;   ///< busy intervals by instance (Chrome trace-event JSON)
   /// Interval statistics: one JSON line per hw.sim.interval_cycles cycles
-  /// written here (empty: none; hw/run_statistics.h).
+  /// written here (empty: none; hw/observe/run_statistics.h).
   std::string interval_stats;
   bool track_parents = true;  ///< keep parent rays (FunctionalReplayer::set_track_parents)
   RayLocator locator;         ///< names a ray's line in errors the model finds (may be empty)

@@ -98,7 +98,7 @@ void read_memory(Fields& parent, MemoryConfig& m) {
   });
   f.integer("at_lookahead_cycles", m.at_lookahead_cycles, 1, 1000000);
   f.boolean("l2_lookups_in_time_order", m.l2_lookups_in_time_order);
-  if (const auto* o = f.get("objects")) {  // present: object caches (hw/object_caches.h)
+  if (const auto* o = f.get("objects")) {  // present: object caches (hw/memory/object_caches.h)
     Fields fo(*o, parent.file(), field + ".objects");
     ObjectCachesConfig& oc = m.objects;
     oc.enabled = true;

@@ -10,8 +10,8 @@
 #include <nlohmann/json.hpp>
 
 #include "datapath/ray.h"
-#include "hw/memory_config.h"
-#include "hw/tester_timing.h"
+#include "hw/core/tester_timing.h"
+#include "hw/memory/memory_config.h"
 
 namespace vbsim::hw {
 
@@ -175,7 +175,7 @@ HwConfig resolve_hw_config(const std::string& path, const std::string& preset);
 
 /// `cfg` for a run with tester `kind`: with triangle_timing.derive, the triangle
 /// unit's latency and issue interval derived from the tester's arithmetic
-/// (tester_timing.h); otherwise `cfg` as it is.
+/// (hw/core/tester_timing.h); otherwise `cfg` as it is.
 HwConfig for_tester(HwConfig cfg, TesterKind kind);
 
 /// The configuration as JSON, every field (the form presets and `config.hw` use).

@@ -1,5 +1,5 @@
 // HwCounters: what the cycle engine counted in one run (cycles, unit
-// operations, waits by cause, stack overflow, per-ray latency); hw_stats.h
+// operations, waits by cause, stack overflow, per-ray latency); hw/observe/hw_stats.h
 // turns them into the `hw` section of the stats JSON and the human table.
 #pragma once
 #include <array>
@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "datapath/ray.h"
-#include "hw/latency_distribution.h"
+#include "hw/observe/latency_distribution.h"
 
 namespace vbsim::hw {
 

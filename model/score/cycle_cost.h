@@ -7,7 +7,7 @@
 #include <cstdint>
 
 #include "hw/hw_config.h"
-#include "hw/ray_feed.h"
+#include "hw/source/ray_feed.h"
 #include "replay/replay_options.h"
 #include "replay/replay_stats.h"
 #include "scene/bvh.h"

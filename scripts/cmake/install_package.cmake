@@ -1,6 +1,7 @@
 # `cmake --install`: the model library (lib/libvbsim.a), its public headers
 # (include/vbsim/<part>/*.h, include/vbsim/trace_writer.hpp), the presets and
-# technology files (share/vbsim/presets, share/vbsim/tech), the CMake package
+# technology files (share/vbsim/presets, share/vbsim/tech), the examples with
+# their own CMakeLists.txt (share/vbsim/examples: testbench/examples), the CMake package
 # (lib/cmake/vbsim: find_package(vbsim) -> vbsim::vbsim) and a pkg-config file
 # (lib/pkgconfig/vbsim.pc). Every path is relative to the prefix given at
 # install time (cmake --install BUILD --prefix DIR), so the package can be
@@ -21,6 +22,10 @@ install(DIRECTORY ${PROJECT_SOURCE_DIR}/model/ DESTINATION ${CMAKE_INSTALL_INCLU
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/model/include/vbsim/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/vbsim)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/model/hw/presets/ DESTINATION ${VBSIM_INSTALL_DATA_DIR}/presets)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/model/energy/tech/ DESTINATION ${VBSIM_INSTALL_DATA_DIR}/tech)
+# The examples as a user builds them on their own (their CMakeLists.txt finds the
+# package); the test driver that builds them stays behind.
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/testbench/examples/ DESTINATION ${VBSIM_INSTALL_DATA_DIR}/examples
+        PATTERN "installed_package_test.cmake" EXCLUDE)
 
 install(EXPORT vbsimTargets NAMESPACE vbsim:: DESTINATION ${VBSIM_INSTALL_CMAKE_DIR})
 configure_package_config_file(${PROJECT_SOURCE_DIR}/scripts/cmake/vbsimConfig.cmake.in

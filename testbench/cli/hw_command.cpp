@@ -7,8 +7,8 @@
 
 #include "commands.h"
 #include "hw/accelerator.h"
-#include "hw/hierarchy_report.h"
-#include "hw/hw_energy.h"
+#include "hw/observe/hierarchy_report.h"
+#include "hw/observe/hw_energy.h"
 #include "hw/simulation_context.h"
 #include "io/atomic_output_file.h"
 #include "io/output_paths.h"

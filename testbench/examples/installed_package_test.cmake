@@ -1,13 +1,16 @@
 # The installed package as a user meets it (ctest: package.installed_examples):
-# installs vbsim's build to a fresh prefix, builds testbench/examples out of
-# tree against it (find_package(vbsim), vbsim::vbsim), runs the three examples and
+# installs vbsim's build to a fresh prefix, copies the examples the package
+# installs (PREFIX/share/vbsim/examples) to a folder of their own and builds
+# that copy against the package alone (find_package(vbsim), vbsim::vbsim; no
+# header of the source tree on any include path), runs the four examples and
 # checks that they print what the examples built with the project print (the
 # same library, headers and presets), and that the installed library reads
 # the installed presets.
 # Then one example again, built with the flags of the installed vbsim.pc.
 #   cmake -DBUILD_DIR=... -DSOURCE_DIR=... -DWORK_DIR=... -DIN_TREE_EMBED=... -DIN_TREE_CLOCKED=...
-#         -DIN_TREE_CLOSED_LOOP=... -DCXX_COMPILER=... -P installed_package_test.cmake
-foreach(var BUILD_DIR SOURCE_DIR WORK_DIR IN_TREE_EMBED IN_TREE_CLOCKED IN_TREE_CLOSED_LOOP CXX_COMPILER)
+#         -DIN_TREE_CLOSED_LOOP=... -DIN_TREE_PRECISION=... -DCXX_COMPILER=... -P installed_package_test.cmake
+foreach(var BUILD_DIR SOURCE_DIR WORK_DIR IN_TREE_EMBED IN_TREE_CLOCKED IN_TREE_CLOSED_LOOP IN_TREE_PRECISION
+            CXX_COMPILER)
   if(NOT DEFINED ${var})
     message(FATAL_ERROR "installed_package_test: -D${var}= is required")
   endif()
@@ -29,11 +32,14 @@ function(expect_line text line what)
 endfunction()
 
 set(prefix ${WORK_DIR}/prefix)
+set(examples ${WORK_DIR}/examples)
 set(build ${WORK_DIR}/examples-build)
 file(REMOVE_RECURSE ${WORK_DIR})
 run("install" ${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${prefix})
 foreach(f lib/libvbsim.a lib/cmake/vbsim/vbsimConfig.cmake lib/pkgconfig/vbsim.pc include/vbsim/hw/accelerator.h
-          include/vbsim/trace_writer.hpp share/vbsim/presets/small.json share/vbsim/tech/45nm.json)
+          include/vbsim/trace_writer.hpp share/vbsim/presets/small.json share/vbsim/tech/45nm.json
+          share/vbsim/examples/CMakeLists.txt share/vbsim/examples/example_main.h
+          share/vbsim/examples/reduced_precision/reduced_precision_units.h)
   if(NOT EXISTS ${prefix}/${f})
     message(FATAL_ERROR "installed_package_test: ${prefix}/${f} was not installed")
   endif()
@@ -42,15 +48,24 @@ if(EXISTS ${prefix}/include/vbsim/capture_shim)
   message(FATAL_ERROR "installed_package_test: the capture shim's headers were installed")
 endif()
 
+if(EXISTS ${prefix}/share/vbsim/examples/installed_package_test.cmake)
+  message(FATAL_ERROR "installed_package_test: the test driver was installed with the examples")
+endif()
+if(EXISTS ${prefix}/include/vbsim/reduced_precision OR EXISTS ${prefix}/include/vbsim/hw/examples)
+  message(FATAL_ERROR "installed_package_test: example code was installed as part of the library's headers")
+endif()
+
+# The installed examples, copied out of the prefix as a user would copy them.
+file(COPY ${prefix}/share/vbsim/examples/ DESTINATION ${examples})
 # -j2 and ccache (when found, testbench/examples/CMakeLists.txt): one file per example.
-run("configure" ${CMAKE_COMMAND} -S ${SOURCE_DIR}/testbench/examples -B ${build} -DCMAKE_BUILD_TYPE=Release
+run("configure" ${CMAKE_COMMAND} -S ${examples} -B ${build} -DCMAKE_BUILD_TYPE=Release
     -DCMAKE_PREFIX_PATH=${prefix} -DCMAKE_CXX_COMPILER=${CXX_COMPILER})
 run("build" ${CMAKE_COMMAND} --build ${build} -j 2)
 
 set(trace ${SOURCE_DIR}/traces/bunny/paths.jsonl)
 set(ENV{SYSTEMC_DISABLE_COPYRIGHT_MESSAGE} 1)
 unset(ENV{VBSIM_DATA_DIR})
-foreach(example embed clocked closed_loop)
+foreach(example embed clocked closed_loop precision)
   if(example STREQUAL "embed")
     set(installed ${build}/embed_accelerator)
     set(in_tree ${IN_TREE_EMBED})
@@ -59,6 +74,10 @@ foreach(example embed clocked closed_loop)
     set(installed ${build}/closed_loop_shader)
     set(in_tree ${IN_TREE_CLOSED_LOOP})
     set(args ${trace} 4)
+  elseif(example STREQUAL "precision")
+    set(installed ${build}/precision_study)
+    set(in_tree ${IN_TREE_PRECISION})
+    set(args ${trace} validity-bit small)
   else()
     set(installed ${build}/clocked_design)
     set(in_tree ${IN_TREE_CLOCKED})
@@ -78,6 +97,11 @@ foreach(example embed clocked closed_loop)
   if(example STREQUAL "closed_loop")
     if(NOT out_installed MATCHES "\nlater [1-9][0-9]*\n")
       message(FATAL_ERROR "installed_package_test: no closed loop that waited for answers in\n${out_installed}")
+    endif()
+  elseif(example STREQUAL "precision")
+    expect_line("${out_installed}" "${trace}, method validity-bit, preset small, 1008 rays" "every ray of the trace")
+    if(NOT out_installed MATCHES "\ntriangle 8 bits ")
+      message(FATAL_ERROR "installed_package_test: no reduced-precision run in\n${out_installed}")
     endif()
   else()
     expect_line("${out_installed}" "rays 1008" "every ray of the trace")

@@ -1,17 +1,19 @@
-// The reduced-precision study (hw/examples/precision_study.h) on a trace:
+// The reduced-precision study (reduced_precision/precision_study.h) on a trace:
 // the built-in units, then the box unit and the triangle tester with fewer
 // mantissa bits, one line each (docs/hw-model.md, "Reduced precision").
 //
 //   precision_study [TRACE] [METHOD] [PRESET]
-//     (default: the bundled trace, validity-bit, the small preset)
+//     (default: the bundled trace when built with the project, validity-bit,
+//     the small preset; built against the installed package, TRACE is needed)
 #include <cstdio>
 #include <exception>
+#include <stdexcept>
 #include <string>
 
 #include <systemc>
 
 #include "datapath/self_intersection_method.h"
-#include "hw/examples/precision_study.h"
+#include "reduced_precision/precision_study.h"
 
 #include "example_main.h"
 
@@ -22,7 +24,12 @@ double percent(uint64_t v, uint64_t base) {
 }
 
 int run(int argc, char** argv) {
+#ifdef VBSIM_SOURCE_DIR
   const std::string trace = argc > 1 ? argv[1] : std::string(VBSIM_SOURCE_DIR) + "/traces/bunny/paths.jsonl";
+#else
+  if (argc < 2) throw std::invalid_argument("usage: precision_study TRACE [METHOD] [PRESET]");
+  const std::string trace = argv[1];
+#endif
   const std::string method = argc > 2 ? argv[2] : "validity-bit";
   const std::string preset = argc > 3 ? argv[3] : "small";
   vbsim::ReplayOptions opt;

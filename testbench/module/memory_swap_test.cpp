@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "hw/cycle_replay.h"
-#include "hw/l2_cache.h"
+#include "hw/memory/l2_cache.h"
 #include "replay/replay_run.h"
 #include "trace/trace_source.h"
 

@@ -1,4 +1,4 @@
-// The reduced-precision example units (hw/examples/reduced_precision_units.h)
+// The reduced-precision example units (reduced_precision/reduced_precision_units.h)
 // bound through AcceleratorUnits on the bundled trace: a box unit with bounds
 // rounded outward keeps every hit and does at least the built-in work; a
 // triangle tester on rounded vertices changes hits, counted against the
@@ -7,8 +7,8 @@
 
 #include <vector>
 
-#include "hw/examples/precision_study.h"
-#include "hw/examples/reduced_precision_units.h"
+#include "reduced_precision/precision_study.h"
+#include "reduced_precision/reduced_precision_units.h"
 #include "replay/replay_run.h"
 #include "trace/trace_source.h"
 

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "hw/cycle_replay.h"
-#include "hw/ray_source_if.h"
+#include "hw/source/ray_source_if.h"
 #include "replay/replay_run.h"
 #include "trace/trace_source.h"
 

@@ -17,9 +17,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "hw/cycle_replay.h"
-#include "hw/trace_scope.h"
 #include "../unit/three_floors.h"
+#include "hw/cycle_replay.h"
+#include "hw/observe/trace_scope.h"
 
 using namespace vbsim;
 using namespace vbsim::hw;

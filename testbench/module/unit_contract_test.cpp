@@ -9,10 +9,10 @@
 
 #include <memory>
 
-#include "accelerator_harness.h"
-#include "hw/pipeline_units.h"
-#include "recording_memory.h"
 #include "../unit/three_floors.h"
+#include "accelerator_harness.h"
+#include "hw/core/pipeline_units.h"
+#include "recording_memory.h"
 
 using namespace vbsim;
 using namespace vbsim::hw;

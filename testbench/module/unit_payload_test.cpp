@@ -10,14 +10,14 @@
 #include <memory>
 #include <vector>
 
+#include "../unit/three_floors.h"
 #include "accelerator_harness.h"
 #include "datapath/bvh_stepper.h"
+#include "hw/core/pipeline_units.h"
 #include "hw/cycle_clock.h"
 #include "hw/cycle_replay.h"
-#include "hw/pipeline_units.h"
 #include "replay/replay_run.h"
 #include "trace/trace_source.h"
-#include "../unit/three_floors.h"
 
 using namespace vbsim;
 using namespace vbsim::hw;

@@ -9,9 +9,9 @@
 #include <map>
 #include <memory>
 
-#include "accelerator_harness.h"
-#include "hw/hierarchy_report.h"
 #include "../unit/three_floors.h"
+#include "accelerator_harness.h"
+#include "hw/observe/hierarchy_report.h"
 
 using namespace vbsim;
 using namespace vbsim::hw;

@@ -6,7 +6,7 @@
 
 #include <sstream>
 
-#include "hw/trace_order_buffer.h"
+#include "hw/sink/trace_order_buffer.h"
 #include "run_vbsim.h"
 
 using namespace vbsim::test;

@@ -12,7 +12,7 @@
 #include <utility>
 #include <vector>
 
-#include "hw/cache_level.h"
+#include "hw/memory/cache_level.h"
 
 using namespace vbsim::hw;
 

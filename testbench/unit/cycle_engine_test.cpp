@@ -8,13 +8,13 @@
 #include <vector>
 
 #include "bench/functional_bench.h"
-#include "hw/bvh_address_map.h"
 #include "hw/cycle_replay.h"
-#include "hw/examples/reduced_precision_units.h"
+#include "hw/memory/bvh_address_map.h"
+#include "reduced_precision/reduced_precision_units.h"
 #include "replay/replay_run.h"
 #include "scene/bvh_collapse.h"
-#include "trace/trace_file.h"
 #include "three_floors.h"
+#include "trace/trace_file.h"
 
 using namespace vbsim;
 using namespace vbsim::hw;

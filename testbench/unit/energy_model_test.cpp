@@ -2,7 +2,7 @@
 #include <catch2/catch.hpp>
 
 #include "energy/operation_energy.h"
-#include "hw/hw_energy.h"
+#include "hw/observe/hw_energy.h"
 #include "trace_test_support.h"
 
 using namespace vbsim;

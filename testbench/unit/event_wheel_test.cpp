@@ -9,7 +9,7 @@
 #include <tuple>
 #include <vector>
 
-#include "hw/event_wheel.h"
+#include "hw/scheduler/event_wheel.h"
 
 using namespace vbsim::hw;
 

@@ -1,7 +1,7 @@
 // LatencyDistribution: nearest-rank percentiles and log2 buckets, by hand.
 #include <catch2/catch.hpp>
 
-#include "hw/latency_distribution.h"
+#include "hw/observe/latency_distribution.h"
 
 using namespace vbsim::hw;
 

@@ -8,7 +8,7 @@
 #include <unordered_map>
 #include <vector>
 
-#include "hw/lru_cache.h"
+#include "hw/memory/lru_cache.h"
 #include "lru_reference.h"
 
 using vbsim::hw::LruCache;

@@ -1,5 +1,5 @@
 // An explicit LRU cache for cross-checks: each set is a list of lines, most
-// recently used first. Slow on purpose and independent of hw/lru_cache.h.
+// recently used first. Slow on purpose and independent of hw/memory/lru_cache.h.
 #pragma once
 #include <cstdint>
 #include <list>

@@ -1,4 +1,4 @@
-// Object caches (memory.objects, hw/object_caches.h), as rtcore-systemc's core
+// Object caches (memory.objects, hw/memory/object_caches.h), as rtcore-systemc's core
 // has them: routing by region and node precision, hits and misses, misses
 // never merged, LRU eviction, one lookup per port interval, one DRAM response
 // a cycle, uncached spill reads, every answer computed by hand.
@@ -6,9 +6,9 @@
 
 #include <systemc>
 
-#include "hw/bvh_address_map.h"
 #include "hw/hw_config.h"
-#include "hw/object_caches.h"
+#include "hw/memory/bvh_address_map.h"
+#include "hw/memory/object_caches.h"
 
 using namespace vbsim;
 using namespace vbsim::hw;

@@ -6,7 +6,7 @@
 #include "datapath/avoidance_unit.h"
 #include "datapath/ray_box_tester.h"
 #include "datapath/testers.h"
-#include "hw/pipeline_units.h"
+#include "hw/core/pipeline_units.h"
 #include "hw/simulation_context.h"
 #include "three_floors.h"
 

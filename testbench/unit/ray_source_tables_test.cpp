@@ -7,8 +7,8 @@
 #include <queue>
 #include <random>
 
-#include "hw/id_position_map.h"
-#include "hw/ready_queue.h"
+#include "hw/source/id_position_map.h"
+#include "hw/source/ready_queue.h"
 
 using namespace vbsim::hw;
 

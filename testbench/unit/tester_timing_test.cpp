@@ -1,5 +1,5 @@
 // The triangle tester's latency and issue interval derived from its arithmetic
-// (hw/tester_timing.h, docs/hw-model.md "Tester latency from its arithmetic"):
+// (hw/core/tester_timing.h, docs/hw-model.md "Tester latency from its arithmetic"):
 // each tester's longest dependency chain counted by hand from its code, priced
 // with the stated operator latencies; the configuration's derive, override and
 // operator fields.
@@ -8,8 +8,8 @@
 #include <nlohmann/json.hpp>
 
 #include "datapath/datapath_ops.h"
+#include "hw/core/tester_timing.h"
 #include "hw/hw_config.h"
-#include "hw/tester_timing.h"
 #include "replay/replay_config.h"
 
 using namespace vbsim;

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "hw/hw_config.h"
-#include "hw/ray_feed.h"
+#include "hw/source/ray_feed.h"
 #include "scene/bvh.h"
 #include "scene/scene.h"
 #include "trace/trace_record.h"

@@ -11,7 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "hw/timeline_recorder.h"
+#include "hw/observe/timeline_recorder.h"
 
 using namespace vbsim::hw;
 namespace fs = std::filesystem;

@@ -2,7 +2,7 @@
 // a parent's pattern keeps its children, never a sibling that shares a prefix.
 #include <catch2/catch.hpp>
 
-#include "hw/trace_scope.h"
+#include "hw/observe/trace_scope.h"
 
 using namespace vbsim::hw;
 

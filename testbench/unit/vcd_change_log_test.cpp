@@ -14,8 +14,8 @@
 #include <tuple>
 #include <vector>
 
-#include "hw/vcd_change_log.h"
-#include "hw/vcd_recorder.h"
+#include "hw/observe/vcd_change_log.h"
+#include "hw/observe/vcd_recorder.h"
 
 using namespace vbsim::hw;
 

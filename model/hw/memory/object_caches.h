@@ -1,0 +1,101 @@
+// ObjectCaches: one core's memory as rtcore-systemc builds it (memory.objects),
+// bound to the core's memory port in place of the L1, the L2 and the DRAM
+// model. Three fully associative LRU caches of whole objects:
+//
+//   node_low   a node both of whose children are low precision (Bvh::low_precision_node)
+//   node       any other node
+//   triangle   a triangle (or a leaf's triangles read at once: one object)
+//
+// Each read is one lookup of one object, keyed by its address (BvhAddressMap
+// says which region, so which cache, an address is in); a read of the stack
+// spill area goes to DRAM uncached. A cache takes a lookup every
+// `port_cycles` cycles. A hit's data are there `hit_latency` cycles after its
+// lookup. A miss reads the object from DRAM: `dram_latency` +
+// ceil(bytes x dram_latency_per_byte) cycles (bytes: the cache's object size,
+// or the read's own), any number in flight, the core taking
+// `responses_per_cycle` responses a cycle (the first free cycle at or after
+// the arrival), and its data are there `hit_latency` cycles after it arrives.
+// A miss is never merged: a lookup of an object whose read is still in flight
+// misses and reads it again, as rtcore's reorder buffer does; the object takes
+// its place at the front of the LRU order when it is looked up (rtcore's
+// when it arrives), and an entry is evicted then if the cache is full.
+#pragma once
+#include <cstdint>
+#include <list>
+#include <memory>
+#include <unordered_map>
+#include <vector>
+
+#include <systemc>
+
+#include "hw/hw_config.h"
+#include "hw/memory/bvh_address_map.h"
+#include "hw/memory/memory_interfaces.h"
+#include "hw/observe/stat_provider.h"
+#include "hw/unit_pipelines.h"
+#include "scene/bvh.h"
+
+namespace vbsim::hw {
+
+/// What one object cache counted.
+struct ObjectCacheCounters {
+  uint64_t lookups = 0, hits = 0, misses = 0;
+  uint64_t misses_in_flight = 0;  ///< misses of an object whose earlier read had not arrived
+  uint64_t dram_bytes = 0;        ///< bytes its misses read
+  void add(const ObjectCacheCounters& o) {
+    lookups += o.lookups;
+    hits += o.hits;
+    misses += o.misses;
+    misses_in_flight += o.misses_in_flight;
+    dram_bytes += o.dram_bytes;
+  }
+};
+
+class ObjectCaches final : public sc_core::sc_module, public MemoryReadIf, public StatProvider {
+ public:
+  sc_core::sc_export<MemoryReadIf> target;  ///< bound by the core
+
+  /// `bvh` must outlive the module (its address map and node precisions route reads).
+  ObjectCaches(sc_core::sc_module_name name, const HwConfig& config, const Bvh& bvh);
+
+  uint64_t read(uint64_t addr, uint32_t bytes, uint64_t now, uint32_t slot) override;
+
+  const char* unit_kind() const override { return "ObjectCaches"; }
+  nlohmann::json parameters() const override;
+  const ObjectCacheCounters& counters(ObjectCachesConfig::Kind k) const { return caches_[k].counters; }
+  uint64_t reads() const { return reads_; }
+  uint64_t bytes() const { return bytes_; }
+  uint64_t uncached_reads() const { return uncached_reads_; }
+  uint64_t dram_reads() const { return dram_reads_; }
+  uint64_t dram_bytes() const { return dram_bytes_; }
+
+ private:
+  struct Entry {
+    std::list<uint64_t>::iterator order;  ///< its place in the LRU list (front: most recent)
+    uint64_t arrival;                     ///< the cycle its data arrive(d)
+  };
+  struct Cache {
+    ObjectCacheConfig config;
+    std::list<uint64_t> order;            ///< addresses, most recently looked up first
+    std::unordered_map<uint64_t, Entry> entries;
+    std::unique_ptr<UnitPipelines> port;
+    UnitCounters port_counters;
+    ObjectCacheCounters counters;
+  };
+
+  /// The cycle the object's DRAM read arrives (after the core takes the response).
+  uint64_t dram_read(uint32_t bytes, uint64_t at, uint64_t now);
+  Cache* cache_of(uint64_t addr);
+
+  ObjectCachesConfig config_;
+  uint32_t dram_latency_;
+  double dram_latency_per_byte_;
+  const Bvh& bvh_;
+  BvhAddressMap map_;
+  Cache caches_[ObjectCachesConfig::kKinds];
+  std::unique_ptr<UnitPipelines> responses_;  ///< null: any number a cycle
+  UnitCounters response_counters_;
+  uint64_t reads_ = 0, bytes_ = 0, uncached_reads_ = 0, dram_reads_ = 0, dram_bytes_ = 0;
+};
+
+}  // namespace vbsim::hw
