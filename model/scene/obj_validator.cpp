@@ -91,7 +91,10 @@ class ObjChecker {
         ++sum_.faces;
         sum_.triangles += args - 2;
       }
-    } else if (key == "o" || key == "g" || key == "usemtl" || key == "mtllib") {
+    } else if (key == "g") {
+      // A group may be unnamed: 3ds Max's exporter writes a bare `g` before
+      // each object's vertices, and assimp reads it.
+    } else if (key == "o" || key == "usemtl" || key == "mtllib") {
       if (args < 1) fail(fmt::format("'{}' needs a name", key));
     } else if (key == "s") {
       if (args != 1) fail("'s' takes one group: off, on or a number");

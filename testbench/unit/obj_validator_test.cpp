@@ -70,6 +70,9 @@ TEST_CASE("OBJ validation: malformed statements are errors naming the line", "[s
   CHECK_THAT(validation_error(t + "vn 0 0 1\nl 1//1 2//1\n"), Catch::Contains("no normals"));
   CHECK_THAT(validation_error(std::string(70000, 'v')), Catch::Contains("64 KiB"));
   CHECK(validation_error("\r\n# only a comment\r\n\r\n") == "(valid)");
+  CHECK(validation_error("g\n" + t + "g\r\nf 1 2 3\n") == "(valid)");
+  CHECK_THAT(validation_error(t + "o\n"), Catch::Contains("line 4") && Catch::Contains("'o' needs a name"));
+  CHECK_THAT(validation_error(t + "usemtl\n"), Catch::Contains("'usemtl' needs a name"));
 }
 
 TEST_CASE("OBJ loading: validated first, no material library opened", "[scene][obj]") {
@@ -96,6 +99,9 @@ TEST_CASE("OBJ loading: validated first, no material library opened", "[scene][o
   std::ofstream(dir / "d.obj", std::ios::trunc) << "v .5 0 -1\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
   CHECK_THROWS_WITH(load_scene((dir / "d.obj").string()),
                     Catch::Contains("line 1") && Catch::Contains("'.5' is not a decimal number assimp reads (write 0.5)"));
+  // A bare `g` (an unnamed group, as 3ds Max's exporter writes it) is read.
+  std::ofstream(dir / "g.obj") << "g\n" << kTriangle << "g\nf 1 2 3\ng named\nf 3 2 1\n";
+  CHECK(load_scene((dir / "g.obj").string()).size() == 2);
   std::ofstream(dir / "s.stl") << "solid x\n";
   CHECK_THROWS_WITH(load_scene((dir / "s.stl").string()), Catch::Contains("unsupported format '.stl'"));
   std::filesystem::remove_all(dir);
