@@ -65,7 +65,9 @@ void score_trace(const std::string& path, const std::vector<ScoreConfig>& config
                  std::vector<CandidateFilter>& filters, ScoreCell* cells, const ScoreRunOptions& run) {
   auto file = open_trace(path);
   // The consistency checks every reader applies: a child after its parent (an error naming the line).
-  CheckedTraceSource source(*file, TraceConsistencyChecker::Options{});
+  TraceConsistencyChecker::Options checks;
+  checks.window = static_cast<std::size_t>(run.parent_window);  // the window the replays keep parents in
+  CheckedTraceSource source(*file, checks);
   const SceneAndBvh sb = load_trace_scene(source.header());
   check_traversal_depth(sb.bvh);
   source.set_triangle_count(sb.scene.size());

@@ -24,6 +24,7 @@
 #include <string>
 #include <unordered_map>
 
+#include "trace/parent_window.h"
 #include "trace/recent_id_window.h"
 
 namespace vbsim {
@@ -47,7 +48,8 @@ struct ParentOrderProblem {
 
 class ParentOrderCheck {
  public:
-  static constexpr std::size_t kDefaultWindow = 1u << 16;
+  /// The replays' parent window (trace/parent_window.h): one window for both.
+  static constexpr std::size_t kDefaultWindow = static_cast<std::size_t>(kDefaultParentWindow);
 
   explicit ParentOrderCheck(std::size_t window = kDefaultWindow);
 

@@ -31,6 +31,7 @@
 #include <vector>
 
 #include "datapath/vec3.h"
+#include "trace/parent_window.h"
 #include "trace/trace_id_set.h"
 #include "trace/trace_validation.h"
 
@@ -51,11 +52,10 @@ struct ParentWindowError : std::runtime_error {
 class ParentRayStore {
  public:
   /// Default window: a child's parent must be among the 131072 rays added
-  /// before it. Renderers that trace depth-first (every vbsim generator)
-  /// put a parent a few rays before its children.
-  static constexpr int64_t kDefaultWindow = int64_t{1} << 17;
+  /// before it (trace/parent_window.h: the consistency checks use the same).
+  static constexpr int64_t kDefaultWindow = kDefaultParentWindow;
   /// Largest window (2^31 - 1 rays, about 80 GB): slot indices are 32-bit.
-  static constexpr int64_t kMaxWindow = (int64_t{1} << 31) - 1;
+  static constexpr int64_t kMaxWindow = kMaxParentWindow;
 
   /// Throws std::invalid_argument unless 1 <= window <= kMaxWindow.
   explicit ParentRayStore(int64_t window = kDefaultWindow);

@@ -19,8 +19,8 @@ namespace {
 
 struct CheckArgs {
   std::string trace;
-  int64_t max_per_check = 0;  // 0: every problem
-  std::size_t window = ParentOrderCheck::kDefaultWindow;
+  uint64_t max_per_check = 0;  // 0: every problem
+  int64_t window = kDefaultParentWindow;  // --parent-window, as in replay
   bool strict = false;
   bool quiet = false;  // -q: warnings and the summary only when the check fails; errors always
 };
@@ -48,7 +48,7 @@ class CheckReport {
     const bool is_error = trace_check_is_error(f.check);
     (is_error ? errors_ : warnings_) += 1;
     ++counts_[k];
-    if (a_.max_per_check > 0 && counts_[k] > a_.max_per_check) return;
+    if (a_.max_per_check > 0 && static_cast<uint64_t>(counts_[k]) > a_.max_per_check) return;
     if (a_.quiet && !is_error) return;
     fmt::print("{}: {} [{}]: {}{}\n", place(file_, word, pos), is_error ? "error" : "warning",
                trace_check_name(f.check), field_part(f.field), f.message);
@@ -101,7 +101,7 @@ int run_check(const CheckArgs& a) {
   CheckReport report(a, a.trace);
   Scene scene;
   TraceConsistencyChecker::Options opt;
-  opt.window = a.window;
+  opt.window = static_cast<std::size_t>(a.window);
   try {
     scene = load_scene(source->header().scene_path, source->header().transform);
     source->set_triangle_count(scene.size());
@@ -208,9 +208,7 @@ void add_check_command(CLI::App& app) {
   cmd->add_option("--max-per-check", args->max_per_check,
                   "print at most N problems of each kind (0: all; all are counted)")
       ->capture_default_str();
-  cmd->add_option("--window", args->window, "recent rays kept for the parent checks")
-      ->check(CLI::Range(std::size_t{1}, std::size_t{1} << 26))
-      ->capture_default_str();
+  add_parent_window_option(*cmd, args->window, "--parent-window,--window");
   cmd->add_flag("--strict", args->strict, "exit 1 on warnings too");
   cmd->add_flag("--quiet,-q", args->quiet, "print nothing when the check passes (errors are always printed)");
   cmd->callback([args] {

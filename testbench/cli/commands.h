@@ -33,7 +33,8 @@ int run_default_job();
 void print_tradeoff_table(const std::string& trace);
 
 /// `--parent-window N`: rays kept for children to find their parent in
-/// (ParentRayStore), checked to be in 1..ParentRayStore::kMaxWindow.
-void add_parent_window_option(CLI::App& cmd, int64_t& window);
+/// (ParentRayStore; the consistency checks look as far back), checked to be
+/// in 1..ParentRayStore::kMaxWindow. `names` as CLI11 takes them.
+void add_parent_window_option(CLI::App& cmd, int64_t& window, const std::string& names = "--parent-window");
 
 }  // namespace vbsim::cli

@@ -65,8 +65,8 @@ void add_score_incomplete_option(CLI::App& cmd, bool& score_incomplete) {
                "the trace does not hold); by default they are replayed but left unscored");
 }
 
-void add_parent_window_option(CLI::App& cmd, int64_t& window) {
-  cmd.add_option("--parent-window", window,
+void add_parent_window_option(CLI::App& cmd, int64_t& window, const std::string& names) {
+  cmd.add_option(names, window,
                  "rays kept for children to look their parent up in (about 40 bytes each); a child whose parent "
                  "lies further back is an error")
       ->check(CLI::Range(int64_t{1}, ParentRayStore::kMaxWindow))

@@ -30,6 +30,7 @@ void run_oracle(const OracleArgs& a) {
   const SceneAndBvh sb = load_trace_scene(file->header());
   TraceConsistencyChecker::Options checks;
   checks.triangles = &sb.scene.triangles;
+  checks.window = static_cast<std::size_t>(a.parent_window);  // one window for the checks and the oracle
   auto source = std::make_unique<CheckedTraceSource>(*file, checks);  // children after parents, as the oracle needs
   source->set_triangle_count(sb.scene.size());
   TraceHeader header = source->header();

@@ -194,6 +194,7 @@ int run_replay_command(const ReplayArgs& a) {
   // error, the other checks are counted warnings (docs/trace-format.md).
   TraceConsistencyChecker::Options checks;
   checks.triangles = &sb.scene.triangles;
+  checks.window = static_cast<std::size_t>(opt.parent_window);  // one window for the checks and the replay
   auto source = std::make_unique<CheckedTraceSource>(*file, checks);
   // The inputs every output names with their checksums.
   const std::vector<std::string> inputs = {a.trace, file->header().scene_path, a.method.config, tech.path};

@@ -1,0 +1,63 @@
+// Files and command lines from elsewhere, third round (docs/reliability.md):
+// score refuses an output that names any input; a NUL byte inside a JSON
+// string; numbers out of range on the command line and in a configuration;
+// endless inputs; messages said once and named; one parent window.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <filesystem>
+
+#include <nlohmann/json.hpp>
+
+#include "run_vbsim.h"
+#include "trace/parent_order_check.h"
+#include "trace/parent_ray_store.h"
+
+using namespace vbsim::test;
+
+namespace {
+
+const std::string kBunny = source_dir() + "/traces/bunny/bunny.obj";
+const std::string kTrace = source_dir() + "/traces/bunny/paths.jsonl";
+
+std::string header(const std::string& scene) {
+  return "{\"format\":\"vbsim-trace\",\"version\":1,\"scene\":\"" + scene + "\"}\n";
+}
+
+/// The bundled trace's rays, without its header.
+std::string bunny_rays() {
+  const std::string text = read_file(kTrace);
+  return text.substr(text.find('\n') + 1);
+}
+
+/// How often `needle` occurs in `text`.
+size_t occurrences(const std::string& text, const std::string& needle) {
+  size_t n = 0;
+  for (size_t at = text.find(needle); at != std::string::npos; at = text.find(needle, at + 1)) ++n;
+  return n;
+}
+
+}  // namespace
+
+TEST_CASE("check and the replays look for parents within one window, --parent-window", "[cli][hostile]") {
+  CHECK(vbsim::ParentOrderCheck::kDefaultWindow == static_cast<size_t>(vbsim::ParentRayStore::kDefaultWindow));
+  const auto dir = scratch_dir("parent_window");
+  const auto stats = dir / "s.json";
+  for (const std::string& window : {std::string(""), std::string(" --parent-window 5000")}) {
+    INFO(window);
+    REQUIRE(run_vbsim("replay " + kTrace + " -q --stats " + stats.string() + window).exit_code == 0);
+    const auto j = nlohmann::json::parse(read_file(stats));
+    CHECK(j["checks"]["window"] == (window.empty() ? 131072 : 5000));
+  }
+  // Ids out of order: check says how far back it looks for parents.
+  const auto trace = dir / "t.jsonl";
+  write_file(trace, header(kBunny) + "{\"id\":5,\"o\":[0,0,5],\"d\":[0,0,-1]}\n{\"id\":4,\"o\":[0,0,5],\"d\":[0,0,-1]}\n");
+  for (const auto& [option, window] : {std::pair<std::string, std::string>{"", "131072"},
+                                       {" --parent-window 1000", "1000"},
+                                       {" --window 1000", "1000"}}) {
+    INFO(option);
+    const RunResult r = run_vbsim("check " + trace.string() + option);
+    CHECK_THAT(r.output, Catch::Contains("parents are then checked only within the last " + window + " rays"));
+  }
+  std::filesystem::remove_all(dir);
+}
