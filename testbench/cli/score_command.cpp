@@ -17,6 +17,7 @@
 #include "progress/progress_meter.h"
 #include "provenance/provenance.h"
 #include "score_merge.h"
+#include "trace/trace_file.h"
 #include "trace/trace_ray_count.h"
 #include "replay/replay_config.h"
 #include "score/score_markdown.h"
@@ -79,6 +80,10 @@ void run_score_command(const ScoreArgs& a) {
   if (a.merge) {
     if (!a.methods.empty() || a.testers_given)
       throw UsageError("option '--merge' takes score tables; their runs chose the methods and testers");
+    // Before any work: no output may overwrite a table it merges.
+    std::vector<NamedPath> tables;
+    for (const std::string& p : a.paths) tables.push_back({"score table", p});
+    check_output_paths(tables, {{"option '--out'", a.out}, {"option '--accuracy-md'", a.markdown}});
     write_outputs(a, merge_score_tables(a.paths, command + " --merge"), command + " --merge", a.paths);
     return;
   }
@@ -91,8 +96,12 @@ void run_score_command(const ScoreArgs& a) {
   const std::vector<TesterKind> testers = parse_tester_list(a.testers);
   const std::vector<ScoreFamily> families = collect_score_families(a.paths);
   std::vector<NamedPath> named_inputs;
+  // Before any work: no output may overwrite a trace, its scene or the technology file.
   for (const ScoreFamily& f : families)
-    for (const std::string& t : f.traces) named_inputs.push_back({"trace", t});
+    for (const std::string& t : f.traces) {
+      named_inputs.push_back({"trace", t});
+      named_inputs.push_back({"scene of " + t, open_trace(t)->header().scene_path});
+    }
   named_inputs.push_back({"option '--tech'", a.tech});
   check_output_paths(named_inputs, {{"option '--out'", a.out}, {"option '--accuracy-md'", a.markdown}});
   const TechFile tech = resolve_tech(a.tech);

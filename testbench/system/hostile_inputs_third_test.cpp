@@ -39,6 +39,37 @@ size_t occurrences(const std::string& text, const std::string& needle) {
 
 }  // namespace
 
+TEST_CASE("score refuses an output that is a trace's scene, a merged table or another input", "[cli][hostile]") {
+  const auto dir = scratch_dir("score_inputs");
+  const auto scene = dir / "s.obj", family = dir / "family", trace = family / "t.jsonl", part = dir / "part.json";
+  std::filesystem::create_directories(family);
+  write_file(scene, read_file(kBunny));
+  write_file(trace, header(scene.string()) + bunny_rays());
+  write_file(part, "{\"not\": \"read\"}\n");
+  const std::string scene_before = read_file(scene), trace_before = read_file(trace);
+  const std::string run = " --methods tmin --testers three-half-plane -q";
+  struct Case {
+    std::string args, role;
+  };
+  const std::vector<Case> cases = {
+      {"score " + trace.string() + run + " --out " + scene.string(), "option '--out'"},
+      {"score " + family.string() + run + " --accuracy-md " + scene.string(), "option '--accuracy-md'"},
+      {"score --merge " + part.string() + " --accuracy-md " + part.string(), "option '--accuracy-md'"},
+      {"score --merge " + part.string() + " --out " + part.string(), "option '--out'"},
+  };
+  for (const Case& c : cases) {
+    INFO(c.args);
+    const RunResult r = run_vbsim(c.args);
+    CHECK(r.exit_code == 2);
+    CHECK_THAT(r.output, Catch::Contains("vbsim: usage error: " + c.role) &&
+                             Catch::Contains("this run reads; refusing to overwrite it"));
+  }
+  CHECK(read_file(scene) == scene_before);
+  CHECK(read_file(trace) == trace_before);
+  CHECK(read_file(part) == "{\"not\": \"read\"}\n");
+  std::filesystem::remove_all(dir);
+}
+
 TEST_CASE("check and the replays look for parents within one window, --parent-window", "[cli][hostile]") {
   CHECK(vbsim::ParentOrderCheck::kDefaultWindow == static_cast<size_t>(vbsim::ParentRayStore::kDefaultWindow));
   const auto dir = scratch_dir("parent_window");
