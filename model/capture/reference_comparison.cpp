@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "io/line_reader.h"
 #include "trace/trace_file.h"
 
 namespace vbsim::capture {
@@ -23,8 +24,9 @@ class JsonLines {
   }
   bool next(json& out) {
     std::string text;
-    while (std::getline(in_, text)) {
+    for (LineRead r; (r = read_bounded_line(in_, text)) != LineRead::kEnd;) {
       ++line_;
+      if (r == LineRead::kTooLong) fail(fmt::format("longer than {} MiB: not a line of JSON", kMaxTextLineBytes >> 20));
       if (text.find_first_not_of(" \t\r") == std::string::npos) continue;
       try {
         out = json::parse(text);
@@ -59,7 +61,7 @@ class ReferenceAnswers {
   explicit ReferenceAnswers(const std::string& path) : path_(path) {
     std::ifstream in(path, std::ios::binary);
     std::string first;
-    std::getline(in, first);
+    read_bounded_line(in, first);  // a first line too long for either is refused by JsonLines
     if (first.rfind("VBSIMTRB", 0) == 0 || first.find("\"vbsim-trace\"") != std::string::npos)
       trace_ = open_trace(path);
     else

@@ -1,10 +1,11 @@
 #include "io/json_document.h"
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <cerrno>
 #include <cstring>
-#include <fstream>
-#include <iterator>
-#include <sstream>
+#include <filesystem>
 #include <unordered_set>
 #include <vector>
 
@@ -141,13 +142,34 @@ json parse_json_document(std::string_view text, const std::string& origin) {
   return value;
 }
 
-json read_json_document(const std::string& path) {
-  std::ifstream in(path, std::ios::in | std::ios::binary);
-  if (!in) throw JsonDocumentError(fmt::format("{}: cannot open: {}", path, std::strerror(errno)));
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw JsonDocumentError(fmt::format("{}: read error", path));
-  return parse_json_document(text.str(), path);
+std::string read_json_text(const std::string& path, std::size_t limit) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    throw JsonDocumentError(fmt::format("{}: is a directory, not a JSON file", path));
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) throw JsonDocumentError(fmt::format("{}: cannot open: {}", path, std::strerror(errno)));
+  std::string text;
+  char block[1 << 16];
+  for (;;) {
+    const ssize_t n = ::read(fd, block, sizeof block);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) {
+      const int err = errno;
+      ::close(fd);
+      throw JsonDocumentError(fmt::format("{}: read error: {}", path, std::strerror(err)));
+    }
+    if (n == 0) break;
+    if (text.size() + static_cast<std::size_t>(n) > limit) {
+      ::close(fd);
+      throw JsonDocumentError(fmt::format("{}: longer than {} MiB, the limit of a JSON file (docs/config.md)", path,
+                                          limit >> 20));
+    }
+    text.append(block, static_cast<std::size_t>(n));
+  }
+  ::close(fd);
+  return text;
 }
+
+json read_json_document(const std::string& path) { return parse_json_document(read_json_text(path), path); }
 
 }  // namespace vbsim

@@ -26,6 +26,12 @@ namespace vbsim {
 /// documents nest at most 6 levels; a trace line 2).
 constexpr int kMaxJsonDepth = 64;
 
+/// Largest JSON document read from a file (a configuration, a technology
+/// file, a score table, a manifest): 64 MiB. vbsim's own are below 1 MiB; an
+/// endless input (/dev/zero) is refused when it passes the limit, before
+/// memory grows with it.
+constexpr std::size_t kMaxJsonDocumentBytes = std::size_t{64} << 20;
+
 struct JsonDocumentError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
@@ -40,7 +46,12 @@ std::size_t line_of_offset(std::string_view text, std::size_t offset);
 /// Parses `text` under the contract above; `origin` names it in errors (a path).
 nlohmann::json parse_json_document(std::string_view text, const std::string& origin);
 
-/// Reads the file at `path` whole and parses it (errors name the path).
+/// The bytes of the file at `path` (a pipe too), read once: a
+/// JsonDocumentError "PATH: ..." when it is a directory, cannot be opened or
+/// read, or holds more than `limit` bytes (then it stops reading there).
+std::string read_json_text(const std::string& path, std::size_t limit = kMaxJsonDocumentBytes);
+
+/// Reads the file at `path` whole (read_json_text) and parses it (errors name the path).
 nlohmann::json read_json_document(const std::string& path);
 
 }  // namespace vbsim

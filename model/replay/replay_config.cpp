@@ -146,12 +146,11 @@ nlohmann::json read_config_json(const std::string& path) {
     const auto it = pipes.find(path);
     if (it != pipes.end()) return it->second;
   }
-  std::ifstream in(path);
-  if (!in) throw ConfigError(fmt::format("{}: cannot open config file: {}", path, std::strerror(errno)));
   nlohmann::json j;
   try {
-    // Bounded nesting, no repeated key, numbers within double (io/json_document.h).
-    j = parse_json_document(std::string(std::istreambuf_iterator<char>(in), {}), path);
+    // At most kMaxJsonDocumentBytes; bounded nesting, no repeated key, numbers
+    // within double (io/json_document.h).
+    j = parse_json_document(read_json_text(path), path);
   } catch (const JsonDocumentError& e) {
     throw ConfigError(e.what());
   }

@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "io/line_reader.h"
 #include "trace/incomplete_reasons.h"
 #include "trace/trace_header_json.h"
 #include "trace/trace_json_values.h"
@@ -138,8 +139,16 @@ TextTraceReader::TextTraceReader(std::string path, std::ifstream in)
 }
 
 bool TextTraceReader::read_content_line() {
-  while (std::getline(in_, line_)) {
+  if (stopped_) return false;
+  for (LineRead r; (r = read_bounded_line(in_, line_)) != LineRead::kEnd;) {
     ++line_number_;
+    if (r == LineRead::kTooLong) {
+      stopped_ = true;  // the line's rest would be read as more lines
+      line_.clear();
+      throw TraceError::at_line(path_, line_number_, "",
+                                fmt::format("longer than {} MiB, the limit of a trace line (docs/trace-format.md)",
+                                            kMaxTextLineBytes >> 20));
+    }
     if (!is_blank_or_comment(line_)) return true;
   }
   if (in_.bad()) throw TraceError::at_line(path_, line_number_ + 1, "", "read error");

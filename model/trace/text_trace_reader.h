@@ -34,13 +34,16 @@ class TextTraceReader final : public TraceSource {
   int64_t line_number() const { return line_number_; }
 
  private:
-  /// Reads up to the next line that is neither blank nor a comment; false at end of file.
+  /// Reads up to the next line that is neither blank nor a comment; false at
+  /// end of file. A line longer than kMaxTextLineBytes (io/line_reader.h) is
+  /// an error at its line, and the reader reads nothing more after it.
   bool read_content_line();
 
   std::string path_;
   std::ifstream in_;
   std::string line_;
   int64_t line_number_ = 0;
+  bool stopped_ = false;  ///< a line passed kMaxTextLineBytes: the rest is not read
   TraceHeader header_;
   TraceRayValidator validator_;
 };

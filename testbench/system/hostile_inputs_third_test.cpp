@@ -70,6 +70,31 @@ TEST_CASE("score refuses an output that is a trace's scene, a merged table or an
   std::filesystem::remove_all(dir);
 }
 
+TEST_CASE("endless inputs are refused at a bound, naming the file", "[cli][hostile]") {
+  struct Case {
+    std::string args, expected;
+  };
+  const std::string ref = source_dir() + "/traces/bunny/paths.jsonl";
+  const std::vector<Case> cases = {
+      {"replay " + kTrace + " -q --config /dev/zero", "/dev/zero: longer than 64 MiB"},
+      {"hw --tech /dev/zero", "/dev/zero: longer than 64 MiB"},
+      {"score --merge /dev/zero -q", "/dev/zero: longer than 64 MiB"},
+      {"check /dev/zero", "/dev/zero:1: longer than 16 MiB"},
+      {"replay /dev/zero -q", "/dev/zero:1: longer than 16 MiB"},
+      {"compare-reference /dev/zero " + ref + " -q", "/dev/zero:1: longer than 16 MiB"},
+  };
+  for (const Case& c : cases) {
+    INFO(c.args);
+    // 2 GB of address space: more than any of these needs, less than an
+    // unbounded read takes before it fails (then "out of memory", not the bound).
+    const RunResult r = run_command("bash -c 'ulimit -v 2000000; " + std::string(VBSIM_BINARY) + " " + c.args +
+                                    "' 2>&1");
+    CHECK(r.exit_code == 1);
+    CHECK_THAT(r.output, Catch::Contains("vbsim: error: " + c.expected));
+    CHECK(occurrences(r.output, "vbsim: error") == 1);
+  }
+}
+
 TEST_CASE("check and the replays look for parents within one window, --parent-window", "[cli][hostile]") {
   CHECK(vbsim::ParentOrderCheck::kDefaultWindow == static_cast<size_t>(vbsim::ParentRayStore::kDefaultWindow));
   const auto dir = scratch_dir("parent_window");

@@ -2,6 +2,10 @@
 // bounded nesting and no repeated key, and refused with its file and line.
 #include <catch2/catch.hpp>
 
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
 #include <string>
 
 #include "io/json_document.h"
@@ -56,4 +60,22 @@ TEST_CASE("json document: malformed JSON and numbers beyond double name the line
   CHECK_THAT(refusal("{\n\"a\": 1,\n\"b\": }"), Catch::StartsWith("c.json: line 3: not valid JSON"));
   CHECK_THAT(refusal("{\"a\": 1e999}"), Catch::StartsWith("c.json: line 1: not valid JSON"));
   CHECK_THAT(refusal(""), Catch::StartsWith("c.json: line 1: not valid JSON"));
+}
+
+TEST_CASE("json document: a file is read up to a bound, and a directory is named as one", "[json]") {
+  const auto dir = std::filesystem::temp_directory_path() / ("vbsim_json_text_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const auto file = dir / "c.json";
+  std::ofstream(file) << "{\"a\": 1}\n";
+  CHECK(read_json_text(file.string()) == "{\"a\": 1}\n");
+  CHECK(read_json_text(file.string(), 9) == "{\"a\": 1}\n");
+  CHECK_THROWS_WITH(read_json_text(file.string(), 8), Catch::StartsWith(file.string() + ": longer than"));
+  CHECK(read_json_document(file.string())["a"] == 1);
+  CHECK_THROWS_WITH(read_json_document(dir.string()), dir.string() + ": is a directory, not a JSON file");
+  CHECK_THROWS_WITH(read_json_document((dir / "none.json").string()),
+                    (dir / "none.json").string() + ": cannot open: No such file or directory");
+  // An endless file stops at the bound, not when memory runs out.
+  CHECK_THROWS_WITH(read_json_document("/dev/zero"),
+                    "/dev/zero: longer than 64 MiB, the limit of a JSON file (docs/config.md)");
+  std::filesystem::remove_all(dir);
 }
