@@ -17,7 +17,16 @@ namespace {
 
 using json = nlohmann::json;
 
-/// nlohmann's DOM builder with one rule added: a key met twice in one object
+/// Whether a JSON number's digits before its exponent are not all 0.
+bool mantissa_is_nonzero(const std::string& number) {
+  for (const char c : number) {
+    if (c == 'e' || c == 'E') break;
+    if (c >= '1' && c <= '9') return true;
+  }
+  return false;
+}
+
+/// nlohmann's DOM builder with two rules added: a key met twice in one object
 /// stops the parse (the DOM builder alone would keep the last value).
 class DocumentSax {
  public:
@@ -27,7 +36,14 @@ class DocumentSax {
   bool boolean(bool v) { return dom_.boolean(v); }
   bool number_integer(json::number_integer_t v) { return dom_.number_integer(v); }
   bool number_unsigned(json::number_unsigned_t v) { return dom_.number_unsigned(v); }
-  bool number_float(json::number_float_t v, const std::string& s) { return dom_.number_float(v, s); }
+  bool number_float(json::number_float_t v, const std::string& s) {
+    if (v == 0 && mantissa_is_nonzero(s)) {  // 1e-999: not zero, but read as 0
+      underflow_ = path_.empty() ? "<root>" : path_;
+      underflow_text_ = s;
+      return false;
+    }
+    return dom_.number_float(v, s);
+  }
   bool string(std::string& v) { return dom_.string(v); }
   bool binary(json::binary_t& v) { return dom_.binary(v); }
   bool start_object(std::size_t n) {
@@ -58,6 +74,8 @@ class DocumentSax {
   }
 
   const std::string& duplicate() const { return duplicate_; }
+  const std::string& underflow() const { return underflow_; }
+  const std::string& underflow_text() const { return underflow_text_; }
   const std::string& error() const { return error_; }
   std::size_t error_position() const { return error_position_; }
 
@@ -77,6 +95,7 @@ class DocumentSax {
   std::vector<Scope> scopes_;
   std::string path_;  ///< key path of the value being read, "a.b"
   std::string duplicate_;
+  std::string underflow_, underflow_text_;  ///< a number that rounds to 0 in double, and its text
   std::string error_;
   std::size_t error_position_ = 0;
 };
@@ -133,6 +152,9 @@ json parse_json_document(std::string_view text, const std::string& origin) {
   const bool ok = json::sax_parse(text.begin(), text.end(), &sax, json::input_format_t::json, true);
   if (!sax.duplicate().empty())
     throw JsonDocumentError(fmt::format("{}: field '{}': appears twice", origin, sax.duplicate()));
+  if (!sax.underflow().empty())
+    throw JsonDocumentError(fmt::format("{}: field '{}': {} is too small for a double: it rounds to 0", origin,
+                                        sax.underflow(), sax.underflow_text()));
   if (!ok || !sax.error().empty()) {
     // nlohmann counts the failing character's position from 1.
     const std::size_t at = sax.error_position() > 0 ? sax.error_position() - 1 : 0;

@@ -8,10 +8,12 @@
 //     stack of the recursive code that walks or prints it);
 //   - a key that appears twice in one object is refused (plain parsing keeps
 //     the last one silently; the trace readers refuse it too);
-//   - malformed JSON and numbers beyond double are refused;
+//   - malformed JSON, numbers beyond double and numbers that are not zero but
+//     round to 0 in double (1e-999) are refused;
 //   - every refusal is a JsonDocumentError whose message starts with
-//     "ORIGIN:" and names the line of the fault (a duplicate key: its path,
-//     "hw.memory.l1").
+//     "ORIGIN:" and names the line of the fault (a duplicate key or a number
+//     that rounds to 0: its path, "hw.memory.l1").
+// read_json_text reads at most kMaxJsonDocumentBytes of a file.
 #pragma once
 #include <cstddef>
 #include <stdexcept>

@@ -15,6 +15,7 @@
 
 #include "commands.h"
 #include "exit_codes.h"
+#include "numeric_options.h"
 #include "io/atomic_output_file.h"
 #include "io/output_paths.h"
 #include "provenance/provenance.h"
@@ -45,7 +46,10 @@ int run_command_line(int argc, char** argv) {
   app.set_version_flag("--version", vbsim::vbsim_version_line(), "print the version and git revision");
   app.footer("Exit codes: 0 success, 1 runtime error, 2 usage error, 130 interrupted.");
   app.require_subcommand(0, 1);
-  app.parse_complete_callback([&app] { refuse_empty_values(app); });
+  app.parse_complete_callback([&app] {
+    refuse_empty_values(app);
+    check_numeric_option_values(app);  // no wrapped, cut or octal numbers (numeric_options.h)
+  });
   add_replay_command(app);
   add_convert_command(app);
   add_bench_command(app);

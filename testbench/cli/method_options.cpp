@@ -75,6 +75,25 @@ void add_parent_window_option(CLI::App& cmd, int64_t& window, const std::string&
 
 namespace {
 
+/// The float32 parameters: each option and the configuration field it sets.
+struct FloatParameter {
+  const char* option;
+  std::optional<double> MethodOptions::*value;
+  const char* field;     ///< top-level field, or the block of `subfield`
+  const char* subfield;  ///< nullptr: `field` itself
+};
+constexpr FloatParameter kFloatParameters[] = {
+    {"--tmin-eps", &MethodOptions::tmin_eps, "tmin_eps", nullptr},
+    {"--offset-normal-eps", &MethodOptions::offset_normal_eps, "offset_normal_eps", nullptr},
+    {"--offset-direction-eps", &MethodOptions::offset_direction_eps, "offset_direction_eps", nullptr},
+    {"--adaptive-origin", &MethodOptions::adaptive_origin, "adaptive", "origin"},
+    {"--adaptive-float-scale", &MethodOptions::adaptive_float_scale, "adaptive", "float_scale"},
+    {"--adaptive-int-scale", &MethodOptions::adaptive_int_scale, "adaptive", "int_scale"},
+    {"--vb-eps", &MethodOptions::vb_eps, "validity_bit", "eps"},
+    {"--vb-component-scale", &MethodOptions::vb_component_scale, "validity_bit", "component_scale"},
+    {"--bvh-traversal-cost", &MethodOptions::bvh_traversal_cost, "bvh", "traversal_cost"},
+};
+
 /// Applies the options given on the command line onto `opt` (after --config).
 /// `--method` may carry KEY=VALUE parameters as `vbsim score`'s entries do.
 void apply_command_line(const MethodOptions& o, ReplayOptions& opt) {
@@ -83,22 +102,28 @@ void apply_command_line(const MethodOptions& o, ReplayOptions& opt) {
   if (o.method.empty() && o.config.empty()) j["method"] = o.default_method;
   if (!o.tester.empty()) j["tester"] = o.tester;
   if (!o.hitpoint.empty()) j["hitpoint"] = o.hitpoint;
-  if (o.tmin_eps) j["tmin_eps"] = *o.tmin_eps;
-  if (o.offset_normal_eps) j["offset_normal_eps"] = *o.offset_normal_eps;
-  if (o.offset_direction_eps) j["offset_direction_eps"] = *o.offset_direction_eps;
-  if (o.adaptive_origin) j["adaptive"]["origin"] = *o.adaptive_origin;
-  if (o.adaptive_float_scale) j["adaptive"]["float_scale"] = *o.adaptive_float_scale;
-  if (o.adaptive_int_scale) j["adaptive"]["int_scale"] = *o.adaptive_int_scale;
+  for (const FloatParameter& p : kFloatParameters) {
+    const std::optional<double>& v = o.*p.value;
+    if (!v) continue;
+    nlohmann::json one = nlohmann::json::object();
+    nlohmann::json& slot = p.subfield ? one[p.field][p.subfield] : one[p.field];
+    slot = *v;
+    // Alone first, so that an error names the option: the checks of a
+    // configuration file's field, float32 range and rounding included.
+    ReplayOptions scratch;
+    apply_replay_config(one, fmt::format("option '{}'", p.option), scratch);
+    if (p.subfield)
+      j[p.field][p.subfield] = *v;
+    else
+      j[p.field] = *v;
+  }
   if (o.vb_policy) j["validity_bit"]["policy"] = *o.vb_policy;
   if (o.vb_eps_mode) j["validity_bit"]["eps_mode"] = *o.vb_eps_mode;
-  if (o.vb_eps) j["validity_bit"]["eps"] = *o.vb_eps;
   if (o.vb_guard_bits) j["validity_bit"]["guard_bits"] = *o.vb_guard_bits;
   if (o.vb_min_exponent) j["validity_bit"]["min_exponent"] = *o.vb_min_exponent;
-  if (o.vb_component_scale) j["validity_bit"]["component_scale"] = *o.vb_component_scale;
   if (o.bvh_builder) j["bvh"]["builder"] = *o.bvh_builder;
   if (o.bvh_quality) j["bvh"]["quality"] = *o.bvh_quality;
   if (o.bvh_leaf_size) j["bvh"]["max_leaf_size"] = *o.bvh_leaf_size;
-  if (o.bvh_traversal_cost) j["bvh"]["traversal_cost"] = *o.bvh_traversal_cost;
   if (o.bvh_sah_block) j["bvh"]["sah_block_size"] = *o.bvh_sah_block;
   if (o.bvh_width) j["bvh"]["width"] = *o.bvh_width;
   if (o.vb_tests) {

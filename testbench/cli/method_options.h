@@ -15,15 +15,17 @@ struct MethodOptions {
   std::string default_method = "none";  ///< used when neither --method nor --config names one
   std::string method, tester, hitpoint;  ///< empty: not given
   std::string config;
-  // Parameters: set only when given, so they override the config file.
-  std::optional<float> tmin_eps, offset_normal_eps, offset_direction_eps;
-  std::optional<float> adaptive_origin, adaptive_float_scale, adaptive_int_scale;
+  // Parameters: set only when given, so they override the config file. The
+  // float32 fields are read as double and checked as the configuration field
+  // they set is (a value that overflows or rounds to 0 in float32 is refused).
+  std::optional<double> tmin_eps, offset_normal_eps, offset_direction_eps;
+  std::optional<double> adaptive_origin, adaptive_float_scale, adaptive_int_scale;
   std::optional<std::string> vb_policy, vb_eps_mode, vb_tests;
-  std::optional<float> vb_eps, vb_component_scale;
+  std::optional<double> vb_eps, vb_component_scale;
   std::optional<int> vb_guard_bits, vb_min_exponent;
   std::optional<std::string> bvh_builder, bvh_quality;
   std::optional<int> bvh_leaf_size, bvh_width;
-  std::optional<float> bvh_traversal_cost;
+  std::optional<double> bvh_traversal_cost;
   std::optional<int> bvh_sah_block;
   int64_t parent_window = ParentRayStore::kDefaultWindow;  ///< --parent-window
   bool score_incomplete = false;  ///< --score-incomplete

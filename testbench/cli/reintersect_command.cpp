@@ -6,6 +6,7 @@
 #include <thread>
 
 #include "commands.h"
+#include "exit_codes.h"
 #include "io/atomic_output_file.h"
 #include "io/output_paths.h"
 #include "method_options.h"
@@ -24,11 +25,11 @@ struct ReintersectArgs {
 };
 
 void run(ReintersectArgs a) {
-  if (a.params.triangles < 1) throw ConfigError("option '--triangles': must be >= 1");
+  if (a.params.triangles < 1) throw UsageError("option '--triangles': must be >= 1");
   if (a.params.children < 0 || a.params.children > 1000000)
-    throw ConfigError("option '--children': must lie in [0, 1000000]");
-  if (a.params.threads < 1) throw ConfigError("option '--threads': must be >= 1");
-  if (!(a.params.exp >= 0 && a.params.exp <= 30)) throw ConfigError("option '--exp': must lie in [0, 30]");
+    throw UsageError("option '--children': must lie in [0, 1000000]");
+  if (a.params.threads < 1) throw UsageError("option '--threads': must be >= 1");
+  if (!(a.params.exp >= 0 && a.params.exp <= 30)) throw UsageError("option '--exp': must lie in [0, 30]");
   const std::vector<ScoreConfig> configs =
       score_configs(parse_method_list(a.methods), parse_tester_list(a.testers, "--testers"));
   const std::string command =

@@ -70,6 +70,58 @@ TEST_CASE("score refuses an output that is a trace's scene, a merged table or an
   std::filesystem::remove_all(dir);
 }
 
+TEST_CASE("numbers out of range on the command line are usage errors naming the option", "[cli][hostile]") {
+  const auto dir = scratch_dir("option_ranges");
+  const std::string png = (dir / "x.png").string();
+  struct Case {
+    std::string args, expected;
+  };
+  const std::vector<Case> cases = {
+      {"render " + kBunny + " -o " + png + " --seed -1", "option '--seed': -1 is negative"},
+      {"render " + kBunny + " -o " + png + " --seed 99999999999999999999999",
+       "option '--seed': 99999999999999999999999 is out of range"},
+      {"gen paths --seed 010 -o " + (dir / "g").string(), "option '--seed': '010' has a leading 0"},
+      {"replay " + kTrace + " --mode cycle --interval-stats " + (dir / "i.json").string() + " --interval -1",
+       "option '--interval': -1 is negative"},
+      {"replay " + kTrace + " --mode cycle --warmup-rays -1", "option '--warmup-rays': -1 is negative"},
+      {"replay " + kTrace + " --mode cycle --timeline " + (dir / "t.json").string() +
+           " --timeline-start 18446744073709551616",
+       "option '--timeline-start': 18446744073709551616 is out of range"},
+      {"reintersect --first 18446744073709551616", "option '--first': 18446744073709551616 is out of range"},
+      {"check " + kTrace + " --max-per-check -1", "option '--max-per-check': -1 is negative"},
+      {"bench --rays 99999999999999999999", "option '--rays': 99999999999999999999 is out of range"},
+      {"replay " + kTrace + " --tmin-eps 1e-999", "option '--tmin-eps': 1e-999 is too small for a double"},
+      // Float32 parameters: checked as the configuration field they set.
+      {"replay " + kTrace + " --tmin-eps 1e-50",
+       "option '--tmin-eps': field 'tmin_eps': 1e-50 is too small for a float32: it rounds to 0"},
+      {"replay " + kTrace + " --vb-eps 1e300", "option '--vb-eps': field 'validity_bit.eps': 1e+300 is out of range"},
+      {"replay " + kTrace + " --tmin-eps -1", "option '--tmin-eps': field 'tmin_eps': must be >= 0"},
+      {"replay " + kTrace + " --tmin-eps nan", "option '--tmin-eps': 'nan' is not a decimal number"},
+      {"reintersect --triangles 0", "option '--triangles': must be >= 1"},
+  };
+  for (const Case& c : cases) {
+    INFO(c.args);
+    const RunResult r = run_vbsim(c.args + " -q");
+    CHECK(r.exit_code == 2);
+    CHECK_THAT(r.output, Catch::Contains("vbsim: usage error: " + c.expected));
+  }
+  CHECK(std::filesystem::is_empty(dir));  // refused before any work
+  // Values in range still run; a float32 parameter reads as the config's does.
+  CHECK(run_vbsim("replay " + kTrace + " -q --tmin-eps 1e-3 --method tmin").exit_code == 0);
+  CHECK(run_vbsim("check " + kTrace + " -q --max-per-check +3").exit_code == 0);
+  // A configuration's number that is not zero but reads as 0 names its field.
+  const auto cfg = dir / "c.json";
+  write_file(cfg, "{\"method\": \"tmin\",\n \"tmin_eps\": 1e-999}\n");
+  RunResult r = run_vbsim("replay " + kTrace + " -q --config " + cfg.string());
+  CHECK(r.exit_code == 1);
+  CHECK_THAT(r.output, Catch::Contains("vbsim: error: " + cfg.string() +
+                                       ": field 'tmin_eps': 1e-999 is too small for a double: it rounds to 0"));
+  write_file(cfg, "{\"method\": \"tmin\", \"tmin_eps\": 0e-999, \"offset_normal_eps\": 0.0}\n");  // zeros are zero
+  r = run_vbsim("replay " + kTrace + " -q --config " + cfg.string());
+  CHECK(r.exit_code == 0);
+  std::filesystem::remove_all(dir);
+}
+
 TEST_CASE("endless inputs are refused at a bound, naming the file", "[cli][hostile]") {
   struct Case {
     std::string args, expected;

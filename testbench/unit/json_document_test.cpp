@@ -62,6 +62,16 @@ TEST_CASE("json document: malformed JSON and numbers beyond double name the line
   CHECK_THAT(refusal(""), Catch::StartsWith("c.json: line 1: not valid JSON"));
 }
 
+TEST_CASE("json document: a number that is not zero but rounds to 0 in double names its field", "[json]") {
+  CHECK(refusal("{\"tmin_eps\": 1e-999}") == "c.json: field 'tmin_eps': 1e-999 is too small for a double: it rounds to 0");
+  CHECK(refusal("{\"hw\": {\"x\": [0.5, -2.5e-400]}}") ==
+        "c.json: field 'hw.x': -2.5e-400 is too small for a double: it rounds to 0");
+  CHECK(refusal("1e-999") == "c.json: field '<root>': 1e-999 is too small for a double: it rounds to 0");
+  // Zero written any way is zero; a denormal double is not zero.
+  CHECK(parse_json_document("{\"a\": 0e-999, \"b\": -0.0, \"c\": 0.000e5}", "c.json")["a"] == 0.0);
+  CHECK(parse_json_document("{\"a\": 5e-324}", "c.json")["a"].get<double>() > 0.0);
+}
+
 TEST_CASE("json document: a file is read up to a bound, and a directory is named as one", "[json]") {
   const auto dir = std::filesystem::temp_directory_path() / ("vbsim_json_text_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
