@@ -6,10 +6,12 @@
 #include <fmt/ranges.h>
 
 #include <CLI/CLI.hpp>
+#include <cstdio>
 #include <cstdlib>
 #include <exception>
 #include <new>
 #include <string>
+#include <system_error>
 #include <vector>
 #include <systemc>
 
@@ -71,8 +73,10 @@ int run_command_line(int argc, char** argv) {
   } catch (const CLI::RuntimeError& e) {  // a command's own exit code (e.g. 130)
     return e.get_exit_code();
   } catch (const CLI::ParseError& e) {
-    // --help and --version exit 0; every real parse error is a usage error.
+    // --help and --version exit 0, also when their reader has gone (`| head`);
+    // every real parse error is a usage error.
     const int printed = app.exit(e);
+    if (printed == 0) ignore_standard_output_errors();
     return printed == 0 ? kExitSuccess : kExitUsage;
   } catch (const UsageError& e) {
     fmt::print(stderr, "vbsim: usage error: {}\nRun with --help for more information.\n", e.what());
@@ -84,6 +88,12 @@ int run_command_line(int argc, char** argv) {
     fmt::print(stderr, "vbsim: error: out of memory running '{}' (the inputs or settings above need more memory "
                        "than this machine gives; docs/reliability.md, \"Bounded memory\")\n",
                fmt::join(std::vector<std::string>(argv, argv + argc), " "));
+    return kExitRuntimeError;
+  } catch (const std::system_error& e) {
+    // fmt's "cannot write to file" when data on stdout did not arrive: said
+    // once, by sc_main, as standard output's error with its reason.
+    if (std::ferror(stdout)) return kExitRuntimeError;
+    fmt::print(stderr, "vbsim: error: {}\n", e.what());
     return kExitRuntimeError;
   } catch (const std::exception& e) {
     fmt::print(stderr, "vbsim: error: {}\n", e.what());

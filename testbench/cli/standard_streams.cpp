@@ -36,8 +36,18 @@ void guard_standard_streams() {
   if (!is_open(2)) occupy(2, O_WRONLY);
 }
 
+namespace {
+bool g_ignore_output_errors = false;
+}  // namespace
+
+void ignore_standard_output_errors() { g_ignore_output_errors = true; }
+
 std::string standard_output_error() {
   std::cout.flush();
+  if (g_ignore_output_errors) {
+    std::fflush(stdout);
+    return "";
+  }
   errno = 0;
   const bool flushed = std::fflush(stdout) == 0;
   const int flush_errno = errno;

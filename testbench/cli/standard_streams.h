@@ -13,7 +13,12 @@ namespace vbsim::cli {
 void guard_standard_streams();
 
 /// Flushes stdout; an empty string when everything written reached it, else
-/// the reason ("Broken pipe", "No space left on device").
+/// the reason ("Broken pipe", "No space left on device"). Always empty after
+/// ignore_standard_output_errors().
 std::string standard_output_error();
+
+/// For --help and --version: text for a reader that may stop early (`| head`),
+/// so a stdout that did not take all of it is no error.
+void ignore_standard_output_errors();
 
 }  // namespace vbsim::cli

@@ -147,6 +147,29 @@ TEST_CASE("endless inputs are refused at a bound, naming the file", "[cli][hosti
   }
 }
 
+TEST_CASE("a directory, a full stdout and help to a closed pipe are each said once, or not at all", "[cli][hostile]") {
+  const auto dir = scratch_dir("messages");
+  RunResult r = run_vbsim("replay " + kTrace + " -q --config " + dir.string());
+  CHECK(r.exit_code == 1);
+  CHECK(r.output == "vbsim: error: " + dir.string() + ": is a directory, not a JSON file\n");
+  r = run_vbsim("hw --tech " + dir.string());
+  CHECK(r.exit_code == 1);
+  CHECK(r.output == "vbsim: error: " + dir.string() + ": is a directory, not a JSON file\n");
+  // hw's text is longer than stdout's buffer: the write fails during the run.
+  r = run_vbsim_raw("hw 2>&1 >/dev/full");
+  CHECK(r.exit_code == 1);
+  CHECK(r.output == "vbsim: error: standard output: No space left on device\n");
+  // Help and version for a reader that has gone (`| head`): quiet, exit 0.
+  for (const std::string args : {"replay --help", "--help", "--version"}) {
+    INFO(args);
+    // The reader (true) is gone before vbsim writes; vbsim's stderr goes to fd 3, read here.
+    r = run_command("bash -c '{ (sleep 0.3; " + std::string(VBSIM_BINARY) + " " + args +
+                    " 2>&3) | true; echo \"status ${PIPESTATUS[0]}\"; } 3>&1'");
+    CHECK(r.output == "status 0\n");
+  }
+  std::filesystem::remove_all(dir);
+}
+
 TEST_CASE("check and the replays look for parents within one window, --parent-window", "[cli][hostile]") {
   CHECK(vbsim::ParentOrderCheck::kDefaultWindow == static_cast<size_t>(vbsim::ParentRayStore::kDefaultWindow));
   const auto dir = scratch_dir("parent_window");
