@@ -239,7 +239,12 @@ Vec3f json_vec3(const json& v, const char* field) {
 
 std::string json_string(const json& v, const char* field) {
   if (!v.is_string()) problem(field, fmt::format("expected a string, got {}", shown(v)));
-  return v.get<std::string>();
+  // A NUL byte (\u0000) would end the string for every C-string reader of it
+  // (a kind's name, a scene's path): refused rather than read cut short.
+  const std::string& s = v.get_ref<const std::string&>();
+  if (s.find('\0') != std::string::npos)
+    problem(field, fmt::format("a NUL byte (\\u0000) inside the string {}", shown(v)));
+  return s;
 }
 
 void append_json_float(fmt::memory_buffer& out, float x) {

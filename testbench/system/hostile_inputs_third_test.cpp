@@ -70,6 +70,42 @@ TEST_CASE("score refuses an output that is a trace's scene, a merged table or an
   std::filesystem::remove_all(dir);
 }
 
+TEST_CASE("a NUL byte inside a JSON string is an error naming the file, line and field", "[cli][hostile]") {
+  const auto dir = scratch_dir("nul_strings");
+  const auto kind = dir / "kind.jsonl", scene = dir / "scene.jsonl";
+  std::string rays = bunny_rays();
+  const size_t shadow = rays.find("\"kind\":\"shadow\"");
+  REQUIRE(shadow != std::string::npos);
+  const size_t line = 2 + static_cast<size_t>(std::count(rays.begin(), rays.begin() + shadow, '\n'));
+  rays.replace(shadow, 15, "\"kind\":\"shadow\\u0000 not a kind\"");
+  write_file(kind, header(kBunny) + rays);
+  // The scene's name with a NUL after a file that exists: never opened.
+  write_file(scene, header(kBunny + "\\u0000.ply") + bunny_rays());
+  const std::string at_kind = kind.string() + ":" + std::to_string(line) + ": field 'kind': a NUL byte";
+  const std::string at_scene = scene.string() + ":1: field 'scene': a NUL byte";
+  struct Case {
+    std::string args, expected;
+  };
+  const std::vector<Case> cases = {
+      {"check " + kind.string(), at_kind},
+      {"replay " + kind.string() + " -q", at_kind},
+      {"oracle " + kind.string() + " -q -o " + (dir / "o.jsonl").string(), at_kind},
+      {"score " + kind.string() + " -q --methods tmin --testers three-half-plane", at_kind},
+      {"convert " + kind.string() + " -o " + (dir / "c.jsonl").string(), at_kind},
+      {"replay " + scene.string() + " -q", at_scene},
+      {"check " + scene.string(), at_scene},
+  };
+  for (const Case& c : cases) {
+    INFO(c.args);
+    const RunResult r = run_vbsim(c.args);
+    CHECK(r.exit_code != 0);
+    CHECK_THAT(r.output, Catch::Contains(c.expected));
+  }
+  CHECK_FALSE(std::filesystem::exists(dir / "c.jsonl"));  // convert wrote no "shadow"
+  CHECK_FALSE(std::filesystem::exists(dir / "o.jsonl"));
+  std::filesystem::remove_all(dir);
+}
+
 TEST_CASE("numbers out of range on the command line are usage errors naming the option", "[cli][hostile]") {
   const auto dir = scratch_dir("option_ranges");
   const std::string png = (dir / "x.png").string();
