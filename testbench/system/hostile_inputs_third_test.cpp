@@ -228,3 +228,21 @@ TEST_CASE("check and the replays look for parents within one window, --parent-wi
   }
   std::filesystem::remove_all(dir);
 }
+
+TEST_CASE("the cycle-level summary gives every energy and area figure its unit", "[cli][hostile]") {
+  // The line once ended "(... static; the method 26.32)": a number without a unit.
+  const RunResult r = run_vbsim("replay " + kTrace + " --mode cycle -m offset-errbound");
+  REQUIRE(r.exit_code == 0);
+  const size_t energy = r.output.find("  energy ");
+  REQUIRE(energy != std::string::npos);
+  const std::string line = r.output.substr(energy, r.output.find('\n', energy) - energy);
+  INFO(line);
+  CHECK(line.find(" pJ/ray (") != std::string::npos);
+  CHECK(line.find(" static; the method ") != std::string::npos);
+  CHECK(line.find(" pJ/ray)") != std::string::npos);
+  const size_t area = r.output.find("  area ");
+  REQUIRE(area != std::string::npos);
+  const std::string area_line = r.output.substr(area, r.output.find('\n', area) - area);
+  INFO(area_line);
+  CHECK(occurrences(area_line, " mm2") == 3);
+}

@@ -191,8 +191,8 @@ nlohmann::json hw_energy_json(const TechFile& t, const HwConfig& cfg, const Repl
 }
 
 std::string hw_energy_lines(const nlohmann::json& e, const nlohmann::json& a) {
-  return fmt::format("  energy {:.4g} pJ/ray ({:.4g} dynamic, {:.4g} static; the method {:.4g})   {:.4g} Mrays/J   "
-                     "{:.4g} W\n  area {:.4f} mm2 (avoidance units {:.5f}, the method's ray-record bits {:.5f})\n",
+  return fmt::format("  energy {:.4g} pJ/ray ({:.4g} dynamic, {:.4g} static; the method {:.4g} pJ/ray)   {:.4g} Mrays/J   "
+                     "{:.4g} W\n  area {:.4f} mm2 (avoidance units {:.5f} mm2, the method's ray-record bits {:.5f} mm2)\n",
                      e["per_ray_pj"].get<double>(), e["dynamic_per_ray_pj"].get<double>(),
                      e["static_per_ray_pj"].get<double>(), e["method_per_ray_pj"].get<double>(),
                      e["mrays_per_j"].get<double>(), e["power_w"].get<double>(), a["chip_mm2"].get<double>(),
