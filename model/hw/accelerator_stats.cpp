@@ -251,6 +251,17 @@ nlohmann::json Accelerator::emission_json() const {
   const uint64_t cycles = sink_->counters().last_cycle;
   const double lane_cycles = static_cast<double>(cycles) * sc.rays_per_cycle;
   const auto share = [&](uint64_t v) { return lane_cycles > 0 ? static_cast<double>(v) / lane_cycles : 0.0; };
+  nlohmann::json shader_cores = nullptr;  // none: the method's arithmetic is the emission path's
+  if (const ShaderCorePool* pool = source_->shader_cores()) {
+    const uint64_t capacity = pool->capacity(cycles);
+    shader_cores = {{"rays", pool->rays()},
+                    {"ops", pool->ops()},
+                    {"lane_cycles", pool->lane_cycles()},
+                    {"mean_wait_cycles", pool->rays() ? static_cast<double>(pool->wait_cycles()) /
+                                                            static_cast<double>(pool->rays())
+                                                      : 0.0},
+                    {"utilisation", capacity ? static_cast<double>(pool->ops()) / static_cast<double>(capacity) : 0.0}};
+  }
   return {{"dependencies", sc.dependencies},
           {"rays_per_cycle", sc.rays_per_cycle},
           {"window", sc.window},
@@ -275,7 +286,8 @@ nlohmann::json Accelerator::emission_json() const {
             {"idle_for_shader", share(e.lane_idle_shader_cycles)},
             {"holding_for_a_slot", share(s.no_free_slot_cycles)}}},
           {"bundles", e.bundles},
-          {"bundled_rays", e.bundled_rays}};
+          {"bundled_rays", e.bundled_rays},
+          {"shader_cores", shader_cores}};
 }
 
 std::string Accelerator::hw_table() {

@@ -205,6 +205,10 @@ void apply_hw_config(const nlohmann::json& j, const std::string& file, HwConfig&
   if (const auto* s = f.get("shader")) {
     Fields fs(*s, file, "hw.shader");
     fs.integer("latency_cycles", cfg.shader.latency_cycles, 0, 1000000);
+    fs.integer("cores", cfg.shader.cores, 0, 4096);
+    fs.integer("simd_lanes", cfg.shader.simd_lanes, 1, 1024);
+    fs.integer("ops_per_lane_cycle", cfg.shader.ops_per_lane_cycle, 1, 64);
+    fs.integer("pipeline_latency", cfg.shader.pipeline_latency, 0, 100000);
     if (const auto* k = fs.get("latency_by_kind")) {
       Fields fk(*k, file, "hw.shader.latency_by_kind");
       for (int kind = 0; kind < kRayKindCount; ++kind) {
@@ -311,7 +315,11 @@ HwConfig resolve_hw_config(const std::string& path, const std::string& preset) {
 }
 
 nlohmann::json shader_config_json(const ShaderConfig& s) {
-  nlohmann::json j = {{"latency_cycles", s.latency_cycles}};
+  nlohmann::json j = {{"latency_cycles", s.latency_cycles},
+                      {"cores", s.cores},
+                      {"simd_lanes", s.simd_lanes},
+                      {"ops_per_lane_cycle", s.ops_per_lane_cycle},
+                      {"pipeline_latency", s.pipeline_latency}};
   if (!s.any_by_kind()) return j;
   nlohmann::json& k = j["latency_by_kind"];
   for (int kind = 0; kind < kRayKindCount; ++kind)

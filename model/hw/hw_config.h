@@ -35,10 +35,11 @@ struct SourceConfig {
   uint32_t emission_op_cycles = 4;  ///< extra cycles per emission-time method acting on a ray (no emission unit)
   /// The emission unit (0: none, emission_op_cycles per method): operations it
   /// starts per cycle on a lane's ray; a ray's n emission-time operations
-  /// (method_costs.h, emission_ops_for, the sign bit aside) hold its lane
-  /// ceil(n / emission_width) + emission_depth cycles instead.
+  /// (method_costs.h, emission_ops_for, the sign bit aside) occupy its lane
+  /// ceil(n / emission_width) cycles instead, and the unit's depth delays the
+  /// ray by emission_depth cycles more without occupying the lane (pipelined).
   uint32_t emission_width = 0;
-  uint32_t emission_depth = 0;  ///< the emission unit's pipeline depth, cycles
+  uint32_t emission_depth = 0;  ///< the emission unit's pipeline depth (latency), cycles
   uint32_t rays_per_cycle = 1;      ///< emission lanes: rays that may start emission in one cycle
   /// Rays the ray-emission buffer looks ahead beyond the oldest unfinished one.
   uint32_t window = 4096;
@@ -72,9 +73,20 @@ struct ShaderConfig {
       if (k != kUnset) return true;
     return false;
   }
+  /// The shader cores that run the software methods' emission-time arithmetic
+  /// (hw/source/shader_core_pool.h), as a GPU's SIMD cores do before a ray
+  /// reaches the emission API: `cores` cores of `simd_lanes` lanes, each lane
+  /// `ops_per_lane_cycle` operations a cycle, a ray's operations on one lane
+  /// with `pipeline_latency` cycles after its last. 0 cores: none, the
+  /// arithmetic is the emission path's (source.emission_width, emission_op_cycles).
+  uint32_t cores = 0;
+  uint32_t simd_lanes = 64;
+  uint32_t ops_per_lane_cycle = 1;
+  uint32_t pipeline_latency = 4;
 };
 
-/// `{"latency_cycles": N}`, with `latency_by_kind` (the kinds given) when any is.
+/// `{"latency_cycles": N, "cores": ..., "simd_lanes": ..., "ops_per_lane_cycle":
+/// ..., "pipeline_latency": ...}`, with `latency_by_kind` (the kinds given) when any is.
 nlohmann::json shader_config_json(const ShaderConfig& s);
 
 /// Each core's traversal controller: every step of a slot (after dispatch,

@@ -47,11 +47,15 @@ TEST_CASE("the shading latency by the parent's kind applies where given and roun
   CHECK(c.shader.latency_for(RayKind::Shadow) == 100);
   const nlohmann::json j = hw_config_json(c);
   CHECK(j["shader"] == nlohmann::json::parse(R"({"latency_cycles": 100,
-                                                "latency_by_kind": {"primary": 7, "diffuse": 0}})"));
+                                                "latency_by_kind": {"primary": 7, "diffuse": 0},
+                                                "cores": 0, "simd_lanes": 64, "ops_per_lane_cycle": 1,
+                                                "pipeline_latency": 4})"));
   HwConfig back;
   apply_hw_config(j, "test", back);
   CHECK(hw_config_json(back) == j);
-  CHECK(hw_config_json(load_preset("small", "t"))["shader"] == nlohmann::json{{"latency_cycles", 200}});
+  CHECK(hw_config_json(load_preset("small", "t"))["shader"] ==
+        nlohmann::json::parse(R"({"latency_cycles": 200, "cores": 4, "simd_lanes": 64, "ops_per_lane_cycle": 1,
+                                  "pipeline_latency": 4})"));
 }
 
 TEST_CASE("the controller's timing by kind of step applies where given and round-trips", "[hwconfig]") {

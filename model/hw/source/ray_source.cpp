@@ -41,7 +41,8 @@ RaySource::RaySource(sc_core::sc_module_name name, const HwConfig& config, Funct
       parent_window_(static_cast<uint64_t>(std::max<int64_t>(1, replayer.options().parent_window))),
       history_capacity_(power_of_two_above(parent_window_ + window_ + 1)),
       independent_missing_(config.source.missing_parents == MissingParents::Independent), lanes_(lanes_count_),
-      ready_(window_ + 1) {
+      pipe_capacity_(static_cast<uint32_t>(power_of_two_above(uint64_t{config.source.emission_depth} + 2))),
+      pipe_(size_t{lanes_count_} * pipe_capacity_), places_event_base_(2 * lanes_count_), ready_(window_ + 1) {
   ring_.reserve(std::min<uint32_t>(capacity_, 4096));
   // The emission unit's operations per kind of ray; the sign bit keeps its own
   // sign_bit_cycles, so the validity bit's dot product is not the unit's.
@@ -51,6 +52,13 @@ RaySource::RaySource(sc_core::sc_module_name name, const HwConfig& config, Funct
     for (const bool shadow : {false, true})
       unit_ops_[child][shadow] = static_cast<uint32_t>(emission_ops_for(arithmetic, child, shadow).total());
   finish_.reserve(std::min<uint64_t>(history_capacity_, uint64_t{1} << 20));  // address space only until rays arrive
+  if (shader_.cores > 0) {
+    pool_ = std::make_unique<ShaderCorePool>(shader_);
+    uint32_t most = 0;  // the most operations a ray of this method runs there
+    for (const auto& by_kind : unit_ops_) most = std::max({most, by_kind[0], by_kind[1]});
+    const uint64_t latency = (most + shader_.ops_per_lane_cycle - 1) / shader_.ops_per_lane_cycle + shader_.pipeline_latency;
+    if (most > 0) shade_ahead_ = lanes_count_ * (1 + latency / std::max<uint32_t>(1, config_.issue_interval));
+  }
   const SourceCounters& c = counters_;
   const EmissionCounters& e = emission_;
   declare_stat("rays", "rays", "rays read from the trace and emitted", c.rays);
@@ -105,7 +113,7 @@ nlohmann::json RaySource::parameters() const {
   return j;
 }
 
-uint64_t RaySource::emission_cycles(const TraceRay& tr) {
+uint64_t RaySource::emission_cycles(const TraceRay& tr, bool& through_unit) {
   uint64_t cost = config_.issue_interval;
   if (tr.sign < 0 && tr.parent_prim >= 0) {
     cost += config_.sign_bit_cycles;
@@ -113,13 +121,17 @@ uint64_t RaySource::emission_cycles(const TraceRay& tr) {
   }
   const uint32_t ops = emission_ops(replayer_.options().method, tr);
   counters_.emission_ops += ops;
+  if (pool_) return cost;  // the method's arithmetic ran on the shader cores (make_ready)
   if (config_.emission_width == 0) {
     cost += uint64_t{ops} * config_.emission_op_cycles;
     return cost;
   }
   const uint32_t n = unit_ops_[tr.parent_prim >= 0][tr.kind == RayKind::Shadow];
   counters_.emission_unit_ops += n;
-  if (n) cost += (n + config_.emission_width - 1) / config_.emission_width + config_.emission_depth;
+  if (n) {
+    cost += (n + config_.emission_width - 1) / config_.emission_width;
+    through_unit = true;
+  }
   return cost;
 }
 
@@ -161,7 +173,15 @@ bool RaySource::read_one(uint64_t now) {
 }
 
 void RaySource::fill_until_ready(uint64_t now) {
-  while (ready_.empty() && read_one(now)) {
+  if (shade_ahead_ == 0) {  // every ray is ready as it enters, or once its parent's result is shaded
+    while (ready_.empty() && read_one(now)) {
+    }
+    return;
+  }
+  // With shader cores a ray read now reaches the lanes their latency later:
+  // read as far ahead as the lanes take rays in that time (shade_ahead_), and
+  // no further, so that the buffer holds what a lane needs, not the window.
+  while ((ready_.empty() || ready_.size() + shading_ < shade_ahead_) && read_one(now)) {
   }
 }
 
@@ -221,7 +241,7 @@ void RaySource::wait_for_parent(uint64_t pos, uint64_t parent_pos) {
   } else {  // the group's event at its first child's place: it stays while the child waits
     e.next_sibling = kNone;
     parent.group = place_of(pos);
-    host_->schedule_source_event(lanes_count_ + parent.group, parent.cycle + shader_.latency_for(parent.kind));
+    host_->schedule_source_event(places_event_base_ + parent.group, parent.cycle + shader_.latency_for(parent.kind));
   }
 }
 
@@ -287,28 +307,45 @@ void RaySource::note_position(int64_t id, uint64_t pos) {
 void RaySource::make_ready(uint64_t pos, uint64_t cycle) {
   Entry& e = at_pos(pos);
   if (e.state == State::Waiting) --waiting_count_;
-  e.state = State::Ready;
-  record(e).ready = cycle;
+  SourceRay& ray = record(e);
+  ray.ready = cycle;
   emission_.dependency_wait_cycles += cycle - e.entered;
+  if (pool_) {  // the method's emission-time arithmetic first, on the shader cores
+    const uint32_t n = unit_ops_[ray.tr.parent_prim >= 0][ray.tr.kind == RayKind::Shadow];
+    if (n) {
+      e.state = State::Shading;
+      ++shading_;
+      host_->schedule_source_event(places_event_base_ + place_of(pos), pool_->run(cycle, n));
+      return;
+    }
+  }
+  e.state = State::Ready;
   ready_.push(pos);
 }
 
 void RaySource::on_event(uint32_t id, uint64_t at) {
-  if (id < lanes_count_) {  // a lane's emission is done
-    Lane& lane = lanes_[id];
-    lane.emitting = false;
-    for (uint32_t k = 0; k < lane.count; ++k) at_pos(lane.first + k).state = State::Held;
-    if (send(id, at)) {
-      try_start(id, at);
-    } else {
-      lane.held_since = at;
-      held_.push_back(id);
-    }
+  if (id < lanes_count_) {  // a lane's occupancy ends: its call's rays leave unless the unit's depth delays them
+    lanes_[id].emitting = false;
+    drain(id, at);
+    if (!lanes_[id].holding) try_start(id, at);
+    return;
+  }
+  if (id < places_event_base_) {  // the pipe's head leaves the emission unit's depth
+    const uint32_t lane = id - lanes_count_;
+    lanes_[lane].out_pending = false;
+    drain(lane, at);
+    if (!lanes_[lane].emitting && !lanes_[lane].holding) try_start(lane, at);
     return;
   }
   // The children of one parent, from the first child at this place, are
   // ready: its result has been shaded.
-  const uint32_t head = id - lanes_count_;
+  const uint32_t head = id - places_event_base_;
+  if (ring_[head].state == State::Shading) {  // its arithmetic on the shader cores is done
+    ring_[head].state = State::Ready;
+    --shading_;
+    ready_.push(ring_[head].index);
+    return start_idle_lanes(at);
+  }
   Finish& parent = finish_at(ring_[head].parent);
   if (parent.group == head) parent.group = kNone;
   for (uint32_t c = head; c != kNone;) {
@@ -326,7 +363,7 @@ void RaySource::on_finish(uint64_t index, uint64_t at) {
   f.cycle = at;
   if (e.first_child != kNone) {  // its waiting children: one group, its event at the first child's place
     f.group = e.first_child;
-    host_->schedule_source_event(lanes_count_ + f.group, at + shader_.latency_for(f.kind));
+    host_->schedule_source_event(places_event_base_ + f.group, at + shader_.latency_for(f.kind));
     e.first_child = kNone;
   }
   const uint64_t old_base = base_;
@@ -337,31 +374,60 @@ void RaySource::on_finish(uint64_t index, uint64_t at) {
 
 void RaySource::on_slot_free(uint64_t at) {
   while (!held_.empty()) {
-    const uint32_t lane = held_.front();
-    if (!send(lane, at)) return;
+    const uint32_t lane_id = held_.front();
+    if (!send(lane_id, at)) return;
     held_.pop_front();
-    counters_.no_free_slot_cycles += at - lanes_[lane].held_since;
-    try_start(lane, at);
+    Lane& lane = lanes_[lane_id];
+    counters_.no_free_slot_cycles += at - lane.held_since;
+    lane.holding = false;
+    lane.head = (lane.head + 1) & (pipe_capacity_ - 1);
+    --lane.size;
+    drain(lane_id, at);  // the calls behind it that are done by now
+    if (!lane.emitting && !lane.holding) try_start(lane_id, at);
   }
 }
 
 bool RaySource::send(uint32_t lane_id, uint64_t now) {
-  Lane& lane = lanes_[lane_id];
-  while (lane.sent < lane.count) {
-    Entry& e = at_pos(lane.first + lane.sent);
+  Emission& call = pipe_at(lane_id, 0);
+  while (call.sent < call.count) {
+    Entry& e = at_pos(call.first + call.sent);
     if (!host_->try_dispatch(record(e), now)) return false;
     e.state = State::InFlight;
     free_staged_.push_back(e.staged);  // the slot holds its own copy now
     e.staged = kNone;
-    ++lane.sent;
+    ++call.sent;
   }
   return true;
+}
+
+void RaySource::drain(uint32_t lane_id, uint64_t now) {
+  Lane& lane = lanes_[lane_id];
+  while (lane.size > 0 && !lane.holding) {
+    Emission& call = pipe_at(lane_id, 0);
+    if (call.done > now) {
+      if (!lane.out_pending) {
+        lane.out_pending = true;
+        host_->schedule_source_event(lanes_count_ + lane_id, call.done);
+      }
+      return;
+    }
+    if (call.sent == 0)
+      for (uint32_t k = 0; k < call.count; ++k) at_pos(call.first + k).state = State::Held;
+    if (!send(lane_id, now)) {
+      lane.holding = true;
+      lane.held_since = now;
+      held_.push_back(lane_id);
+      return;
+    }
+    lane.head = (lane.head + 1) & (pipe_capacity_ - 1);
+    --lane.size;
+  }
 }
 
 void RaySource::start_idle_lanes(uint64_t now) {
   for (uint32_t l = 0; l < lanes_count_; ++l) {
     Lane& lane = lanes_[l];
-    if (lane.emitting || lane.sent < lane.count) continue;  // busy or holding
+    if (lane.emitting || lane.holding) continue;  // busy or holding
     try_start(l, now);
     if (!lanes_[l].emitting) return;  // nothing more to emit now
   }
@@ -369,6 +435,7 @@ void RaySource::start_idle_lanes(uint64_t now) {
 
 void RaySource::try_start(uint32_t lane_id, uint64_t now) {
   Lane& lane = lanes_[lane_id];
+  if (lane.size == pipe_capacity_) return;  // its pipe is full: it takes a ray when the head leaves
   fill_until_ready(now);  // reads ahead only as far as the first ready ray
   if (ready_.empty()) return go_idle(lane_id, now);
   account_idle(lane, now);
@@ -376,7 +443,8 @@ void RaySource::try_start(uint32_t lane_id, uint64_t now) {
   const uint64_t first = ready_.top();
   ready_.pop();
   const TraceRay& head = record(at_pos(first)).tr;
-  uint64_t cost = emission_cycles(head);
+  bool through_unit = false;
+  uint64_t cost = emission_cycles(head, through_unit);
   // Copies: reading further may move the staged records.
   const int64_t head_parent = head.parent;
   const Vec3f head_origin = head.o;
@@ -388,7 +456,7 @@ void RaySource::try_start(uint32_t lane_id, uint64_t now) {
       const TraceRay& next = record(at_pos(first + count)).tr;
       if (next.parent < 0 || next.parent != head_parent || !same_origin(next.o, head_origin)) break;
       ready_.pop();
-      cost += emission_cycles(next);
+      cost += emission_cycles(next, through_unit);
       ++count;
     }
     if (count > 1) {
@@ -404,9 +472,11 @@ void RaySource::try_start(uint32_t lane_id, uint64_t now) {
   }
   counters_.busy_cycles += cost;
   lane.emitting = true;
-  lane.first = first;
-  lane.count = count;
-  lane.sent = 0;
+  // Its rays leave when the lane is free again, or the unit's depth later; never before the calls ahead of it.
+  uint64_t done = now + cost + (through_unit ? config_.emission_depth : 0);
+  if (lane.size > 0) done = std::max(done, pipe_at(lane_id, lane.size - 1).done);
+  pipe_at(lane_id, lane.size) = Emission{first, count, 0, done};
+  ++lane.size;
   host_->schedule_source_event(lane_id, now + cost);
 }
 
@@ -419,7 +489,6 @@ void RaySource::account_idle(Lane& lane, uint64_t now) {
 
 void RaySource::go_idle(uint32_t lane_id, uint64_t now) {
   Lane& lane = lanes_[lane_id];
-  lane.count = lane.sent = 0;
   account_idle(lane, now);  // a lane idle already: its time so far, under the reason it had
   lane.idle = waiting_count_                 ? Idle::Dependency
               : ended_                       ? Idle::End
@@ -430,13 +499,15 @@ void RaySource::go_idle(uint32_t lane_id, uint64_t now) {
 
 std::string RaySource::buffer_report() const {
   std::ostringstream out;
-  size_t waiting = 0, ready = 0;
+  size_t waiting = 0, ready = 0, shading = 0;
   for (uint64_t p = base_; p < next_; ++p) {
     waiting += at_pos(p).state == State::Waiting;
     ready += at_pos(p).state == State::Ready;
+    shading += at_pos(p).state == State::Shading;
   }
   out << "  ray source: " << next_ - base_ << " rays in the buffer from trace position " << base_ << " (" << waiting
-      << " waiting for a parent, " << ready << " ready), " << held_.size() << " lanes holding a ray, trace "
+      << " waiting for a parent, " << shading << " on the shader cores, " << ready << " ready), " << held_.size()
+      << " lanes holding a ray, trace "
       << (ended_ ? "ended" : later_ ? "not ended (the shader has no ray until a result arrives)" : "not ended")
       << "\n";
   return out.str();

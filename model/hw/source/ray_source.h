@@ -28,15 +28,24 @@
 //
 // Emission. `source.rays_per_cycle` lanes each take the ready ray earliest in
 // trace order (a waiting child does not hold back the ready rays behind it) and
-// are busy for its emission cycles:
+// are busy (occupied) for its emission cycles:
 //   single-ray call:  issue_interval
 //   bundle call of n: bundle_cycles + n x issue_interval   (`source.bundles`:
 //                     consecutive ready rays of one parent with the same origin,
 //                     at most bundle_max; the patent's "emit a bundle of rays")
 //   + sign_bit_cycles per ray whose sign bit the source computes
-//   + emission_op_cycles per emission-time method operation acting on a ray.
-// An emitted ray goes to the dispatcher; while every slot is busy its lane holds
-// it (the oldest held lane gets the next free slot).
+//   + emission_op_cycles per emission-time method operation acting on a ray,
+//     or, with an emission unit (emission_width W > 0), ceil(n / W) for a ray's
+//     n operations: the unit accepts them in that many cycles.
+// With shader cores (hw.shader.cores > 0) the method's emission-time arithmetic
+// runs there instead (hw/source/shader_core_pool.h), between a ray's
+// dependencies resolving and its reaching a lane (state Shading), and the lane
+// pays only its issue interval and the sign bit.
+// The unit is pipelined: its depth (emission_depth) delays the rays that went
+// through it, after their lane is free again, and never occupies the lane. A
+// lane's rays leave in the order it emitted them (its pipe). An emitted ray
+// goes to the dispatcher; while every slot is busy its lane holds it and takes
+// no new ray (the oldest held lane gets the next free slot).
 #pragma once
 #include <cstdint>
 #include <deque>
@@ -55,6 +64,7 @@
 #include "hw/source/ray_feed.h"
 #include "hw/source/ray_source_if.h"
 #include "hw/source/ready_queue.h"
+#include "hw/source/shader_core_pool.h"
 #include "replay/functional_replayer.h"
 
 namespace vbsim::hw {
@@ -83,8 +93,9 @@ class RaySource final : public sc_core::sc_module, public RaySourceIf, public St
   void set_locator(RayLocator locate) { locate_ = std::move(locate); }
 
   // ---- the scheduler's side ----
-  /// Events of the source: one per lane, one per buffer place.
-  uint32_t event_ids() const override { return lanes_count_ + capacity_; }
+  /// Events of the source: two per lane (its occupancy's end, its pipe's next
+  /// ray leaving the emission unit's depth), one per buffer place.
+  uint32_t event_ids() const override { return places_event_base_ + capacity_; }
   void start(SourceHost& host, uint64_t at) override;
   void on_event(uint32_t id, uint64_t at) override;
   /// The ray at trace position `index` finished at `at`.
@@ -103,11 +114,13 @@ class RaySource final : public sc_core::sc_module, public RaySourceIf, public St
 
   const SourceCounters& counters() const { return counters_; }
   const EmissionCounters& emission() const { return emission_; }
+  /// The shader cores running the method's emission-time arithmetic, or null (hw.shader.cores 0).
+  const ShaderCorePool* shader_cores() const { return pool_.get(); }
   const char* unit_kind() const override { return "RaySource"; }
   nlohmann::json parameters() const override;
 
  private:
-  enum class State : uint8_t { Waiting, Ready, Emitting, Held, InFlight, Finished };
+  enum class State : uint8_t { Waiting, Shading, Ready, Emitting, Held, InFlight, Finished };
   static constexpr uint32_t kNone = ~uint32_t{0};
   static constexpr uint64_t kUnfinished = ~uint64_t{0};
   /// A ray in the buffer: from the oldest unfinished one to the last read.
@@ -127,11 +140,22 @@ class RaySource final : public sc_core::sc_module, public RaySourceIf, public St
   /// Where a child's parent is, as far as the source knows.
   enum class ParentAt : uint8_t { Found, NotBefore, TooFar };
   enum class Idle : uint8_t { None, Dependency, Window, Shader, End };
+  /// The rays of one call of the emission API (more than one: a bundle).
+  struct Emission {
+    uint64_t first = 0;  ///< trace position of its first ray
+    uint32_t count = 0;  ///< rays it emits
+    uint32_t sent = 0;   ///< of which dispatched
+    uint64_t done = 0;   ///< the cycle its rays leave the emission path (after the unit's depth)
+  };
+  /// A lane: busy (`emitting`) for its current call's occupancy; its calls in
+  /// the order they started, until their rays are dispatched (`pipe`, a ring
+  /// of `pipe_capacity_`: the head is the oldest; `holding`: the head is done
+  /// and waits for a free slot).
   struct Lane {
     bool emitting = false;
-    uint64_t first = 0;   ///< trace position of its first ray
-    uint32_t count = 0;   ///< rays it emits (more than one: a bundle)
-    uint32_t sent = 0;    ///< of which dispatched
+    bool holding = false;
+    bool out_pending = false;  ///< an event for the pipe's head is scheduled
+    uint32_t head = 0, size = 0;
     Idle idle = Idle::End;
     uint64_t idle_since = 0, held_since = 0;
   };
@@ -174,10 +198,19 @@ class RaySource final : public sc_core::sc_module, public RaySourceIf, public St
   /// Adds the lane's idle time since it went idle (or was last counted) to its reason's counter.
   void account_idle(Lane& lane, uint64_t now);
   void start_idle_lanes(uint64_t now);
-  /// Sends the lane's emitted rays to free slots; true when all went.
+  Emission& pipe_at(uint32_t lane, uint32_t k) {
+    return pipe_[lane * pipe_capacity_ + ((lanes_[lane].head + k) & (pipe_capacity_ - 1))];
+  }
+  /// Sends the rays of the lane's oldest call to free slots; true when all went.
   bool send(uint32_t lane, uint64_t now);
-  /// One ray's emission cycles (counted: sign bits, emission operations).
-  uint64_t emission_cycles(const TraceRay& tr);
+  /// Dispatches the lane's calls whose rays are done by `now`, in order, until
+  /// one must wait for a slot (the lane then holds it); schedules the next
+  /// one's event.
+  void drain(uint32_t lane, uint64_t now);
+  /// One ray's emission cycles, the lane's occupancy (counted: sign bits,
+  /// emission operations); `through_unit` is set when its operations went
+  /// through the emission unit (its depth then delays the ray).
+  uint64_t emission_cycles(const TraceRay& tr, bool& through_unit);
 
   SourceConfig config_;
   uint32_t unit_ops_[2][2] = {};  ///< emission-unit operations by [has a parent surface][shadow]
@@ -199,6 +232,12 @@ class RaySource final : public sc_core::sc_module, public RaySourceIf, public St
   std::vector<SourceRay> staged_;     // records of rays read and not yet dispatched
   std::vector<uint32_t> free_staged_;  // places of staged_ free for reuse (the last freed first: warm)
   std::vector<Lane> lanes_;
+  /// Calls a lane may have started and not yet dispatched (a power of two):
+  /// one a cycle at the most through the unit's depth, one being emitted, one
+  /// held; a lane whose pipe is full takes no new ray.
+  uint32_t pipe_capacity_;
+  std::vector<Emission> pipe_;  ///< the lanes' pipes, pipe_capacity_ each
+  uint32_t places_event_base_;  ///< the first buffer place's event id (after the lanes' two each)
   uint64_t base_ = 0;  ///< the oldest unfinished position
   uint64_t next_ = 0;  ///< the next position to read
   bool ended_ = false;
@@ -219,6 +258,11 @@ class RaySource final : public sc_core::sc_module, public RaySourceIf, public St
   std::deque<uint32_t> held_;  ///< lanes holding an emitted ray for want of a slot, oldest first
   SourceCounters counters_;
   EmissionCounters emission_;
+  std::unique_ptr<ShaderCorePool> pool_;  ///< hw.shader.cores > 0: the method's arithmetic runs there
+  uint64_t shading_ = 0;      ///< buffered rays on the shader cores
+  /// With shader cores and a method that runs arithmetic there: rays read
+  /// ahead, ready or shading (fill_until_ready); 0 otherwise.
+  uint64_t shade_ahead_ = 0;
 };
 
 }  // namespace vbsim::hw

@@ -22,6 +22,7 @@ class ReadyQueue {
   }
 
   bool empty() const { return head_ == tail_ && heap_.empty(); }
+  size_t size() const { return static_cast<size_t>(tail_ - head_) + heap_.size(); }
   void push(uint64_t pos) {
     if (head_ == tail_ || pos > ring_[(tail_ - 1) & mask_]) {
       ring_[tail_ & mask_] = pos;
