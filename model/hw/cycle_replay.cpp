@@ -122,6 +122,7 @@ CycleRunResult run_accelerator(const RunInput& input, const Scene& scene, const 
   r.hw["energy"] = hw_energy_json(tech, acc->config(), opt, r.stats, r.counters, r.hw["memory"]["port"]);
   r.hw["area"] = hw_area_json(tech, hw_area(tech, acc->config(), opt));
   r.table += hw_energy_lines(r.hw["energy"], r.hw["area"]);
+  r.table += sram_range_lines(tech, acc->config());
   if (vcd) vcd->write(options.vcd.path, r.counters.cycles);
   if (timeline) timeline->finish();
   return r;

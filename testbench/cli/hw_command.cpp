@@ -42,7 +42,7 @@ void run_hw(const HwArgs& a) {
   if (all) fmt::print("\n");
   if (a.statistics || all) fmt::print("{}", hw::statistics_text(*acc));
   if (all) fmt::print("\n");
-  if (a.area || all) fmt::print("{}", hw::hw_area_table(tech, area));
+  if (a.area || all) fmt::print("{}{}", hw::hw_area_table(tech, area), hw::sram_range_lines(tech, cfg));
   if (!a.json.empty()) {
     const nlohmann::json j = {{"hierarchy", hw::hierarchy_json(*acc)},
                               {"statistics", hw::statistics_json(*acc)},

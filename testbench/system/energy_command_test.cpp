@@ -88,3 +88,55 @@ TEST_CASE("the operations' energy is the same in both replay modes, hw.energy ad
   const RunResult r = run_vbsim("replay " + trace + " -m validity-bit");
   CHECK_THAT(r.output, Catch::Contains("energy (operations only, no memory):"));
 }
+
+TEST_CASE("the 7 nm technology file prices every preset, smaller and cheaper than 45 nm", "[cli][energy]") {
+  const auto dir = scratch_dir("tech_7nm");
+  const std::string tech7 = source_dir() + "/model/energy/tech/7nm.json";
+  for (const std::string preset : {"small", "large", "rtcore"}) {
+    INFO(preset);
+    const std::string a7 = (dir / ("a7-" + preset + ".json")).string(), a45 = (dir / ("a45-" + preset + ".json")).string();
+    const RunResult r = run_vbsim("hw --area -m validity-bit --preset " + preset + " --tech " + tech7 + " --json " + a7);
+    REQUIRE(r.exit_code == 0);
+    CHECK_THAT(r.output, Catch::Contains("7nm.json") && Catch::Contains("chip "));
+    REQUIRE(run_vbsim("hw --area -m validity-bit --preset " + preset + " --json " + a45).exit_code == 0);
+    const double chip7 = nlohmann::json::parse(read_file(a7))["area"]["chip_mm2"].get<double>();
+    const double chip45 = nlohmann::json::parse(read_file(a45))["area"]["chip_mm2"].get<double>();
+    CHECK(chip7 > 0);
+    CHECK(chip7 < chip45 / 5);
+  }
+  const std::string trace = source_dir() + "/traces/bunny/paths.jsonl";
+  const std::string s7 = (dir / "s7.json").string(), s45 = (dir / "s45.json").string();
+  REQUIRE(run_vbsim("replay -q " + trace + " -m validity-bit --mode cycle --tech " + tech7 + " --stats " + s7).exit_code == 0);
+  REQUIRE(run_vbsim("replay -q " + trace + " -m validity-bit --mode cycle --stats " + s45).exit_code == 0);
+  const nlohmann::json e7 = nlohmann::json::parse(read_file(s7))["hw"]["energy"];
+  const nlohmann::json e45 = nlohmann::json::parse(read_file(s45))["hw"]["energy"];
+  CHECK(e7["tech"] == tech7);
+  CHECK(e7["per_ray_pj"].get<double>() > 0);
+  CHECK(e7["per_ray_pj"].get<double>() < e45["per_ray_pj"].get<double>());
+  // The same DRAM figure (DRAM energy is the DRAM's, not the node's).
+  CHECK(e7["dynamic_pj"]["dram"].get<double>() == Approx(e45["dynamic_pj"]["dram"].get<double>()));
+}
+
+TEST_CASE("a memory array outside the technology file's SRAM table is said in the text summary", "[cli][energy]") {
+  const auto dir = scratch_dir("sram_range");
+  const std::string trace = source_dir() + "/traces/bunny/paths.jsonl";
+  // The small preset's 16 KB L1 and 1 MB L2 lie inside the shipped table (8 KB to 1 MB): no warning.
+  const RunResult inside = run_vbsim("hw --area");
+  REQUIRE(inside.exit_code == 0);
+  CHECK_THAT(inside.output, !Catch::Contains("warning:"));
+  // A 4 KB L1 lies below it, a 2 MB L2 above.
+  write_file(dir / "c.json", R"({"hw": {"memory": {"l1": {"size_bytes": 4096}, "l2": {"size_bytes": 2097152}}}})");
+  const std::string config = (dir / "c.json").string();
+  const std::string tech = source_dir() + "/model/energy/tech/45nm.json";
+  const std::string l1 = "warning: the L1 (4 KB) is below the SRAM table of " + tech + " (8 KB to 1 MB)";
+  const std::string l2 = "warning: the L2 (2 MB) is above the SRAM table of " + tech + " (8 KB to 1 MB)";
+  const RunResult area = run_vbsim("hw --area --config " + config + " --tech " + tech);
+  REQUIRE(area.exit_code == 0);
+  CHECK_THAT(area.output, Catch::Contains(l1) && Catch::Contains(l2));
+  const std::string stats = (dir / "s.json").string();
+  const RunResult replay =
+      run_vbsim("replay " + trace + " -m validity-bit --mode cycle --config " + config + " --tech " + tech + " --stats " + stats);
+  REQUIRE(replay.exit_code == 0);
+  CHECK_THAT(replay.output, Catch::Contains(l1 + ": its access energy is extrapolated") && Catch::Contains(l2));
+  CHECK(nlohmann::json::parse(read_file(stats))["hw"]["energy"]["sram_size_extrapolated"] == true);
+}

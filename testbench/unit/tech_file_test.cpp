@@ -6,6 +6,7 @@
 
 #include "datapath/datapath_ops.h"
 #include "energy/tech_file.h"
+#include "io/data_dir.h"
 #include "replay/replay_config.h"
 #include "trace_test_support.h"
 
@@ -97,4 +98,53 @@ TEST_CASE("tech file: a user's file, and bad values named by file and field", "[
   CHECK(broken([](nlohmann::json& j) { j.erase("leakage_w_per_mm2"); }) ==
         path + ": field 'leakage_w_per_mm2': missing");
   CHECK(error_of(dir.file("absent.json")).find("cannot open") != std::string::npos);
+}
+
+namespace {
+
+/// Every {value, source} figure under `j`, by its field name.
+void collect_figures(const nlohmann::json& j, const std::string& at, std::vector<std::pair<std::string, nlohmann::json>>& out) {
+  if (j.is_object() && j.contains("value")) {
+    out.emplace_back(at, j);
+    return;
+  }
+  if (j.is_object())
+    for (const auto& [k, v] : j.items()) collect_figures(v, at.empty() ? k : at + "." + k, out);
+  if (j.is_array())
+    for (size_t i = 0; i < j.size(); ++i) collect_figures(j[i], at + "[" + std::to_string(i) + "]", out);
+}
+
+}  // namespace
+
+TEST_CASE("tech file: the shipped 7 nm file loads, every figure with its source", "[tech]") {
+  const std::string path = tech_dir() + "/7nm.json";
+  const TechFile t = load_tech_file(path);
+  CHECK(t.node_nm == 7);
+  CHECK(t.op_pj[0] == 0.38);  // Jouppi et al., ISCA 2021: fp32 add at 7 nm
+  CHECK(t.op_pj[1] == 1.31);  // fp32 multiply
+  CHECK(t.op_pj[7] == 0.03);  // int32 add
+  CHECK(t.sram_bit_mm2 == Approx(0.027e-6 * 1.6));  // TSMC N7's 0.027 um2 cell and the 45 nm file's periphery
+  // Cheaper than 45 nm in every operation and every area figure.
+  const TechFile t45 = load_tech_file(default_tech_path());
+  for (int k = 0; k < kOpKinds; ++k) {
+    INFO(kOpKindNames[k]);
+    CHECK(t.op_pj[k] < t45.op_pj[k]);
+    CHECK(t.op_mm2[k] < t45.op_mm2[k]);
+  }
+  REQUIRE(t.sram.size() == t45.sram.size());
+  std::vector<std::pair<std::string, nlohmann::json>> figures;
+  collect_figures(nlohmann::json::parse(vbsim::test::read_file(path)), "", figures);
+  // 11 energies, 12 areas, 3 SRAM points, DRAM, leakage.
+  CHECK(figures.size() == 28);
+  for (const auto& [field, f] : figures) {
+    INFO(field);
+    REQUIRE(f.contains("source"));
+    const std::string source = f["source"].get<std::string>();
+    // A published figure names its publication and year; an estimate says so
+    // and what it was derived from.
+    const bool estimate = source.rfind("estimate: ", 0) == 0;
+    const bool cited = source.find("20") != std::string::npos && source.find(',') != std::string::npos;
+    CHECK((estimate || cited));
+    CHECK(source.size() > 40);
+  }
 }

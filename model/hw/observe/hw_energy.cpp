@@ -2,6 +2,11 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cmath>
+#include <utility>
+#include <vector>
+
 #include "datapath/bvh_stepper.h"
 #include "datapath/datapath_ops.h"
 #include "datapath/method_costs.h"
@@ -113,6 +118,41 @@ std::string hw_area_table(const TechFile& t, const HwArea& a) {
   row("l2_cache", a.l2_cache, a.l2_cache > 0 ? 1 : 0);
   s += fmt::format("  chip {:.4f} mm2; the avoidance units {:.5f} mm2, the method's ray-record bits {:.5f} mm2\n",
                    a.chip(), a.avoidance_units_chip(), a.method_record_bits_chip());
+  return s;
+}
+
+namespace {
+
+std::string size_text(double bytes) {
+  if (bytes >= 1048576 && std::fmod(bytes, 1048576) == 0) return fmt::format("{:g} MB", bytes / 1048576);
+  if (bytes >= 1024 && std::fmod(bytes, 1024) == 0) return fmt::format("{:g} KB", bytes / 1024);
+  return fmt::format("{:g} bytes", bytes);
+}
+
+}  // namespace
+
+std::string sram_range_lines(const TechFile& t, const HwConfig& cfg) {
+  if (cfg.memory.ideal || t.sram.empty()) return "";
+  // The arrays hw_energy_json prices, at the sizes it prices them at.
+  std::vector<std::pair<std::string, double>> arrays;
+  if (cfg.memory.objects.enabled) {
+    for (int k = 0; k < ObjectCachesConfig::kKinds; ++k)
+      arrays.emplace_back(fmt::format("{} object cache", object_cache_name(static_cast<ObjectCachesConfig::Kind>(k))),
+                          std::max(64.0, object_cache_bytes(cfg.memory.objects.cache[k])));
+  } else {
+    arrays.emplace_back("L1", static_cast<double>(cfg.memory.l1.size_bytes));
+    arrays.emplace_back("L2", static_cast<double>(cfg.memory.l2.size_bytes));
+  }
+  const double lo = t.sram.front().bytes, hi = t.sram.back().bytes;
+  std::string s;
+  for (const auto& [name, bytes] : arrays) {
+    bool outside = false;
+    t.sram_64bit_pj(bytes, &outside);
+    if (!outside) continue;
+    s += fmt::format("  warning: the {} ({}) is {} the SRAM table of {} ({} to {}): its access energy is {}\n", name,
+                     size_text(bytes), bytes < lo ? "below" : "above", t.path, size_text(lo), size_text(hi),
+                     t.sram.size() == 1 ? "the table's one figure" : "extrapolated along the nearest segment's power law");
+  }
   return s;
 }
 

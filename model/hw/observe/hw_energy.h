@@ -40,6 +40,13 @@ nlohmann::json hw_area_json(const TechFile& tech, const HwArea& a);
 /// The area table `vbsim hw --area` prints.
 std::string hw_area_table(const TechFile& tech, const HwArea& a);
 
+/// One line for every memory array of `cfg` (L1, L2, object caches) whose size
+/// lies outside the technology file's SRAM table, whose access energy is then
+/// extrapolated (TechFile::sram_64bit_pj): "  warning: the L1 (4 KB) is outside
+/// FILE's SRAM table (8 KB to 1 MB): its access energy is extrapolated ...".
+/// Empty when every array is inside the table, or with an ideal memory.
+std::string sram_range_lines(const TechFile& tech, const HwConfig& cfg);
+
 /// The `hw.energy` section: dynamic (operations and memory) and static (leakage
 /// of the chip's area over cycles / clock) energy, per ray, per unit instance,
 /// Mrays/J. `memory` is the hw section's memory.port (Accelerator::memory_stats).
