@@ -21,7 +21,13 @@ axes, lower is better on each:
   - functional replay time per ray (microseconds; from rays per second; it
     includes the exact verdicts, which cost more for wrong answers);
   - cycles per ray of the cycle-level model (the `cycle` object of the `all`
-    rows, present when the table was made in cycle mode).
+    rows, present when the table was made in cycle mode);
+  - from the same cycle-level runs (tables made since they carry them): the
+    energy per ray with memory and leakage (`cycle.energy_per_ray_pj`) and the
+    chip's area (`cycle.chip_mm2`, an area chart).
+Each chart's title names its workload (the family), the hardware preset and the
+technology file; every error rate carries its 95% Wilson interval (the
+secondary row's `errors.per_million` lower and upper).
 Error rate: (self_hit + false_hit + missed) / scored secondary rays (every ray
 that leaves a surface; camera rays are not what the methods are about).
 Output: OUT/pareto-FAMILY.png and OUT/pareto.md (generated).
@@ -66,14 +72,21 @@ def points_of(rows, family, tester):
         if sec is None:
             sys.exit(f"pareto: no secondary row for {family} / {r['method']} / {tester}: "
                      "regenerate the table with this vbsim")
+        pm = sec["errors"]["per_million"]
         p = {"method": r["method"], "error": error_rate(sec), "scored": sec["scored"],
+             "lower": pm["lower"] / 1e6, "upper": pm["upper"] / 1e6,
              "errors": sum(sec["counts"][k] for k in ERROR_KINDS),
              "ops": ops_per_ray(r), "bits": r["config"]["bits_per_ray"],
              "us": 1e6 / r["rays_per_s"] if r.get("rays_per_s") else float("nan")}
         if "cycle" in r:
             p["cycles"] = r["cycle"]["cycles_per_ray"]
+            p["preset"] = r["cycle"]["preset"]
+            if "energy_per_ray_pj" in r["cycle"]:
+                p["pj_total"] = r["cycle"]["energy_per_ray_pj"]
+                p["mm2"] = r["cycle"]["chip_mm2"]
         if "energy" in r:
             p["pj"] = r["energy"]["method_per_ray_pj"]
+            p["tech"] = os.path.basename(r["energy"]["tech"])
         out.append(p)
     return out
 
@@ -91,7 +104,17 @@ def pareto_front(points, cost):
 
 AXES = [("ops", "operations per ray (method only)"), ("pj", "energy per ray, pJ (method only)"),
         ("bits", "bits per ray in flight"),
-        ("us", "functional replay, microseconds per ray"), ("cycles", "cycles per ray, cycle-level model")]
+        ("us", "functional replay, microseconds per ray"), ("cycles", "cycles per ray, cycle-level model"),
+        ("pj_total", "energy per ray, pJ (cycle-level: operations, memory, leakage)"),
+        ("mm2", "chip area, mm2 (cycle-level model)")]
+
+
+def chart_title(family, points):
+    """The workload, the hardware preset and the technology file of a family's chart."""
+    presets = sorted({p["preset"] for p in points if "preset" in p})
+    techs = sorted({p["tech"] for p in points if "tech" in p})
+    return (f"Speed against accuracy: {family}; preset {', '.join(presets) or 'none (functional)'}; "
+            f"technology {', '.join(techs) or 'n/a'} (red: Pareto front; bars: 95% Wilson intervals)")
 
 
 def plot_family(family, points, path):
@@ -107,7 +130,10 @@ def plot_family(family, points, path):
         for i, p in enumerate(points):
             if key not in p:  # a method the cycle-level runs did not measure
                 continue
-            ax.scatter(p[key], max(p["error"], floor), s=28, color=colours[i % 20],
+            y = max(p["error"], floor)
+            ax.errorbar(p[key], y, yerr=[[y - max(p["lower"], floor / 2)], [max(p["upper"], y) - y]], fmt="none",
+                        ecolor=colours[i % 20], elinewidth=0.8, capsize=2, zorder=2)
+            ax.scatter(p[key], y, s=28, color=colours[i % 20],
                        marker=markers[i % len(markers)], zorder=3, label=p["method"])
         front = pareto_front([p for p in points if key in p], key)
         ax.step([p[key] for p in front], [max(p["error"], floor) for p in front], where="post",
@@ -122,7 +148,7 @@ def plot_family(family, points, path):
     panels[0][0].set_ylabel("errors per secondary ray (dotted line: no error)")
     handles, labels = panels[0][0].get_legend_handles_labels()
     fig.legend(handles, labels, loc="lower center", ncol=4, fontsize=7, frameon=False)
-    fig.suptitle(f"Speed against accuracy: {family} (red: Pareto front)", fontsize=11)
+    fig.suptitle(chart_title(family, points), fontsize=10)
     fig.tight_layout(rect=(0, 0.2, 1, 1))
     fig.savefig(path)
     plt.close(fig)
@@ -152,9 +178,11 @@ def main():
              "produces), the method's own energy per ray (`docs/energy.md`: its operations and extra "
              "record bits priced by the technology file), bits per ray in flight, functional replay "
              "time per ray, and the cycle-level "
-             f"model's cycles per ray ({', '.join(presets) or 'not measured'} preset), all from the one "
+             f"model's cycles per ray, energy per ray (operations, memory, leakage) and chip area "
+             f"({', '.join(presets) or 'not measured'} preset), all from the one "
              f"table `{score['command']}` wrote. The Pareto front holds the methods that no other method "
-             "beats on both the cost and the error rate.", ""]
+             "beats on both the cost and the error rate. Each chart's title names its workload, preset "
+             "and technology file; the bars are the error rates' 95% Wilson intervals.", ""]
     for family in families:
         points = points_of(rows, family, args.tester)
         if not points:

@@ -55,7 +55,7 @@ CycleCost trace_cycle_cost(const std::string& path, const SceneAndBvh& sb, const
   const hw::RayLocator locate = [&](const std::string& field, const std::string& message) {
     return std::string(source->error_at_last_ray(field, message).what());
   };
-  return cycle_replay_cost(feed, sb.scene, sb.bvh, opt, run.hw, locate);
+  return cycle_replay_cost(feed, sb.scene, sb.bvh, opt, run.hw, locate, run.tech);
 }
 
 /// Replays one trace with every configuration, adding into cells[0..configs),
@@ -100,6 +100,8 @@ void score_trace(const std::string& path, const std::vector<ScoreConfig>& config
     cells[c].cycle_preset = run.hw.preset;
     cells[c].cycle_rays += cost.rays;
     cells[c].cycles += cost.cycles;
+    cells[c].cycle_total_pj += cost.total_pj;
+    cells[c].chip_mm2 = cost.chip_mm2;
   }
   if (run.progress && run.cycle) run.progress(static_cast<uint64_t>(blocks.rays_read()));
   for (size_t c = 0; c < configs.size(); ++c) {

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "energy/tech_file.h"
 #include "hw/hw_config.h"
 #include "replay/replay_stats.h"
 #include "score/method_spec.h"
@@ -51,6 +52,8 @@ struct ScoreCell {
   uint64_t cycle_rays = 0;   ///< rays the cycle-level replays finished
   uint64_t cycles = 0;       ///< summed over the traces, each replayed on its own
   std::string cycle_preset;  ///< the hardware preset the cycles were measured on
+  double cycle_total_pj = 0;  ///< the cycle-level runs' energy (operations, memory, leakage), summed
+  double chip_mm2 = 0;        ///< the chip's area for this configuration
 };
 
 /// Told the number of rays of a block just replayed with every configuration.
@@ -65,6 +68,8 @@ struct ScoreRunOptions {
   bool cycle = false;
   hw::HwConfig hw;
   std::vector<TesterKind> cycle_testers;
+  /// Prices the cycle-level runs' energy and area (null: the shipped default).
+  const TechFile* tech = nullptr;
   ScoreProgress progress;  ///< called after every block (may be empty)
   /// Parents are looked up among the last `parent_window` rays (ParentRayStore).
   int64_t parent_window = ParentRayStore::kDefaultWindow;

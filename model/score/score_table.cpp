@@ -83,7 +83,13 @@ nlohmann::json score_json(const std::vector<ScoreFamily>& families, const std::v
                       {"rays", cell.cycle_rays},
                       {"cycles", cell.cycles},
                       {"cycles_per_ray", ratio(cell.cycles, cell.cycle_rays)},
-                      {"rays_per_cycle", ratio(cell.cycle_rays, cell.cycles)}};
+                      {"rays_per_cycle", ratio(cell.cycle_rays, cell.cycles)},
+                      // Every cost of the same runs: energy (operations, memory, leakage; the
+                      // replay's hw.energy.per_ray_pj) and the chip's area (hw.area.chip_mm2).
+                      {"tech", t.path},
+                      {"total_pj", cell.cycle_total_pj},
+                      {"energy_per_ray_pj", per_ray(cell.cycle_total_pj, cell.cycle_rays)},
+                      {"chip_mm2", cell.chip_mm2}};
     j["rows"].push_back(std::move(all));
     KindStats secondary;  // every ray with a parent surface: the self-intersection problem
     for (int k = 0; k < kRayKindCount; ++k)

@@ -23,7 +23,9 @@ constexpr const char* kSecondaryKind = "secondary";
 /// per_million {verdict: {rate, lower, upper}}, errors {count, per_million}
 /// (self_hit + false_hit + missed), emission and offset fallbacks, avoidance;
 /// `all` rows add rays_per_s, ops_per_ray, config and, when measured, `cycle`
-/// {preset, rays, cycles, cycles_per_ray, rays_per_cycle}) and `energy`
+/// {preset, rays, cycles, cycles_per_ray, rays_per_cycle, tech, total_pj,
+/// energy_per_ray_pj (operations, memory, leakage: the cycle-level replay's
+/// hw.energy.per_ray_pj), chip_mm2 (hw.area.chip_mm2)}) and `energy`
 /// {tech, per_ray_pj, method_per_ray_pj}: the operations' energy priced by
 /// `tech` (null: the shipped default; energy/operation_energy.h).
 nlohmann::json score_json(const std::vector<ScoreFamily>& families, const std::vector<ScoreCell>& cells,

@@ -53,6 +53,11 @@ std::vector<TradeoffRow> tradeoff_rows(const nlohmann::json& score) {
         t.cycles_per_ray = r["cycle"]["cycles_per_ray"].get<double>();
         t.rays_per_cycle = r["cycle"]["rays_per_cycle"].get<double>();
         t.cycle_preset = r["cycle"]["preset"].get<std::string>();
+        if (r["cycle"].contains("energy_per_ray_pj")) {
+          t.has_cycle_energy = true;
+          t.cycle_energy_per_ray_pj = r["cycle"]["energy_per_ray_pj"].get<double>();
+          t.chip_mm2 = r["cycle"]["chip_mm2"].get<double>();
+        }
       }
     } else if (kind == kSecondaryKind) {
       t.secondary_scored = r["scored"].get<uint64_t>();

@@ -26,6 +26,9 @@ struct TradeoffRow {
   double method_energy_per_ray_pj = 0;  ///< of which the method's own
   bool has_cycles = false;
   double cycles_per_ray = 0, rays_per_cycle = 0;
+  bool has_cycle_energy = false;     ///< the table has the cycle-level energy and area (since they were added)
+  double cycle_energy_per_ray_pj = 0;  ///< operations, memory and leakage per ray, cycle-level
+  double chip_mm2 = 0;                 ///< the chip's area
   std::string cycle_preset;
   uint64_t offset_fallbacks = 0;
 };

@@ -44,15 +44,35 @@ struct ScoreArgs {
 };
 
 
+/// Every column named with its unit: the model's cycles per ray, energy per ray
+/// (operations, memory, leakage) and chip area (cycle mode), and the host's
+/// functional replay speed.
 void print_summary(const nlohmann::json& score) {
   const std::vector<TradeoffRow> rows = tradeoff_rows(score);
   const bool cycles = std::any_of(rows.begin(), rows.end(), [](const TradeoffRow& r) { return r.has_cycles; });
-  fmt::print("{:<22} {:<44} {:<16} {:>9} {:>12} {:>13} {:>10} {:>10}\n", "family", "method", "tester",
-             "secondary", "sec. err/M", "camera miss/M", cycles ? "cycles/ray" : "", "rays/s");
-  for (const TradeoffRow& r : rows)
-    fmt::print("{:<22} {:<44} {:<16} {:>9} {:>12} {:>13} {:>10} {:>10.0f}\n", r.family, r.method, r.tester,
-               r.secondary_scored, format_per_million(r.secondary_rate), format_per_million(r.camera_miss_rate),
-               r.has_cycles ? fmt::format("{:.3g}", r.cycles_per_ray) : "", r.rays_per_s);
+  const bool costs = std::any_of(rows.begin(), rows.end(), [](const TradeoffRow& r) { return r.has_cycle_energy; });
+  std::string head = fmt::format("{:<22} {:<44} {:<16} {:>14} {:>12} {:>13}", "family", "method", "tester",
+                                 "secondary rays", "sec. err/M", "camera miss/M");
+  if (cycles) head += fmt::format(" {:>10}", "cycles/ray");
+  if (costs) head += fmt::format(" {:>10} {:>9}", "pJ/ray", "chip mm2");
+  fmt::print("{} {:>12}\n", head, "host rays/s");
+  for (const TradeoffRow& r : rows) {
+    std::string line = fmt::format("{:<22} {:<44} {:<16} {:>14} {:>12} {:>13}", r.family, r.method, r.tester,
+                                   r.secondary_scored, format_per_million(r.secondary_rate),
+                                   format_per_million(r.camera_miss_rate));
+    if (cycles) line += fmt::format(" {:>10}", r.has_cycles ? fmt::format("{:.3g}", r.cycles_per_ray) : "");
+    if (costs)
+      line += r.has_cycle_energy ? fmt::format(" {:>10.5g} {:>9.4f}", r.cycle_energy_per_ray_pj, r.chip_mm2)
+                                 : fmt::format(" {:>10} {:>9}", "", "");
+    fmt::print("{} {:>12.0f}\n", line, r.rays_per_s);
+  }
+  for (const auto& row : score["rows"])
+    if (costs && row.contains("cycle") && row["cycle"].contains("tech")) {
+      fmt::print("pJ/ray: the cycle-level model's energy per ray (operations, memory, leakage), {} preset, priced by "
+                 "{}; host rays/s: the functional replay on this machine\n",
+                 row["cycle"]["preset"].get<std::string>(), row["cycle"]["tech"].get<std::string>());
+      break;
+    }
 }
 
 /// Writes the table (JSON, markdown) and prints its summary.
@@ -111,6 +131,7 @@ void run_score_command(const ScoreArgs& a) {
   command += " --testers " + a.testers;
   ScoreRunOptions run;
   run.threads = a.threads;
+  run.tech = &tech;
   if (a.mode == "cycle") {
     run.cycle = true;
     run.hw = hw::resolve_hw_config("", a.preset);

@@ -3,6 +3,7 @@
 // errors on bad input.
 #include <catch2/catch.hpp>
 
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "run_vbsim.h"
@@ -239,4 +240,36 @@ TEST_CASE("vbsim scenarios lists every scenario gen accepts", "[system][score]")
   CHECK_THAT(r.output, Catch::StartsWith("paths\n") || Catch::Contains("\npaths\n"));
   const RunResult bad = run_vbsim("gen no-such-scenario -o /tmp/vbsim_none");
   CHECK_THAT(bad.output, Catch::Contains("scenarios: " + r.output.substr(0, r.output.find('\n'))));
+}
+
+TEST_CASE("score --mode cycle gives every cost of the run: the replay's energy per ray and chip area",
+          "[system][score][cycle][energy]") {
+  const auto dir = scratch_dir("score_cycle_costs");
+  const std::string trace = source_dir() + "/traces/bunny/paths.jsonl";
+  for (const std::string& tech : {std::string(), source_dir() + "/model/energy/tech/7nm.json"}) {
+    INFO(tech);
+    const std::string tech_option = tech.empty() ? "" : " --tech " + tech;
+    const auto cyc = (dir / "cycle.json").string(), stats = (dir / "replay.json").string();
+    const RunResult r = run_vbsim("score " + trace + " --methods validity-bit --testers three-half-plane --mode cycle "
+                                  "--preset small --threads 1" + tech_option + " --out " + cyc);
+    INFO(r.output);
+    REQUIRE(r.exit_code == 0);
+    REQUIRE(run_vbsim("replay " + trace + " -q --mode cycle --preset small -m validity-bit" + tech_option +
+                      " --stats " + stats).exit_code == 0);
+    const json c = json::parse(read_file(cyc)), replay = json::parse(read_file(stats));
+    const json* row = find_row(c, "paths", "validity-bit", "three-half-plane", "all");
+    REQUIRE(row);
+    const json& cy = (*row)["cycle"];
+    // The same doubles, not merely close: one trace, one run, the same pricing.
+    CHECK(cy["energy_per_ray_pj"].get<double>() == replay["hw"]["energy"]["per_ray_pj"].get<double>());
+    CHECK(cy["total_pj"].get<double>() == replay["hw"]["energy"]["total_pj"].get<double>());
+    CHECK(cy["chip_mm2"].get<double>() == replay["hw"]["area"]["chip_mm2"].get<double>());
+    CHECK(cy["tech"] == replay["hw"]["energy"]["tech"]);
+    CHECK(cy["energy_per_ray_pj"].get<double>() > (*row)["energy"]["per_ray_pj"].get<double>());  // + memory, leakage
+    // The printed table names every column's unit: the model's cycles and the host's speed apart.
+    CHECK_THAT(r.output, Catch::Contains("cycles/ray") && Catch::Contains("pJ/ray") && Catch::Contains("chip mm2") &&
+                             Catch::Contains("host rays/s"));
+    CHECK_THAT(r.output, Catch::Contains(fmt::format("{:.5g}", cy["energy_per_ray_pj"].get<double>())) &&
+                             Catch::Contains(fmt::format("{:.4f}", cy["chip_mm2"].get<double>())));
+  }
 }
