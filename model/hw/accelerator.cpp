@@ -57,6 +57,7 @@ Accelerator::Accelerator(sc_core::sc_module_name name, const HwConfig& config, c
   }
   if (units.dispatcher) {
     dispatcher_module_ = units.dispatcher("dispatcher", config);
+    dispatcher_replaced_ = true;
     dispatcher_ = &replacement_as<DispatchIf>(*dispatcher_module_, "DispatchIf");
   } else {
     auto d = std::make_unique<Dispatcher>("dispatcher", config.dispatch);

@@ -42,10 +42,13 @@
 #include <memory>
 #include <string>
 
+#include <optional>
+
 #include <nlohmann/json.hpp>
 #include <systemc>
 #include <tlm>
 
+#include "energy/tech_file.h"
 #include "hw/accelerator_units.h"
 #include "hw/core/ray_test_core.h"
 #include "hw/cycle_clock.h"
@@ -61,6 +64,7 @@
 #include "hw/source/dispatcher.h"
 #include "hw/source/ray_feed.h"
 #include "hw/source/ray_source.h"
+#include "hw/unit_inventory.h"
 #include "replay/functional_replayer.h"
 #include "scene/bvh.h"
 #include "scene/scene.h"
@@ -152,8 +156,21 @@ class Accelerator final : private AcceleratorChecks, public sc_core::sc_module, 
   /// The memory section of the stats (the shape of earlier versions' `hw.memory.port`).
   nlohmann::json memory_stats() const;
   SystemCRun systemc_run() const;
-  /// The `hw` section: chip-wide figures, memory, `instances` (every module's statistics).
+  /// The `hw` section: chip-wide figures, memory, `instances` (every module's
+  /// statistics), and the run's price: `energy` (operations, memory, leakage)
+  /// and `area`, as `vbsim replay --mode cycle --stats` gives them, priced by
+  /// technology() (docs/energy.md). Replaced units are priced from the
+  /// inventories they declare (hw/unit_inventory.h), or marked not priced.
   nlohmann::json hw_json();
+  /// The technology file hw_json() prices with; by default the shipped
+  /// model/energy/tech/45nm.json of the data directory (io/data_dir.h), read on first use.
+  void set_technology(const TechFile& tech) { tech_ = tech; }
+  /// Reads it from `path`: ConfigError "FILE: field 'F': reason" on a bad file.
+  void set_technology(const std::string& path) { tech_ = load_tech_file(path); }
+  const TechFile& technology();
+  /// The units replaced through AcceleratorUnits (each core's from one factory:
+  /// core 0's instance stands for them), with the inventories they declare.
+  ReplacedUnits replaced_units() const;
   /// The ray source's emission: waits for parents, for the window, for slots (`hw.emission`).
   nlohmann::json emission_json() const;
   std::string hw_table();
@@ -193,6 +210,8 @@ class Accelerator final : private AcceleratorChecks, public sc_core::sc_module, 
   std::unique_ptr<sc_core::sc_module> source_module_;  // a replacement (units.ray_source)
   RaySourceIf* source_if_ = nullptr;                 // the one the scheduler drives
   std::unique_ptr<sc_core::sc_module> dispatcher_module_;
+  bool dispatcher_replaced_ = false;
+  std::optional<TechFile> tech_;
   DispatchIf* dispatcher_ = nullptr;
   sc_core::sc_vector<RayTestCore> cores_;
   std::unique_ptr<IdealMemory> ideal_;

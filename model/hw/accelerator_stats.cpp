@@ -8,6 +8,7 @@
 
 #include <fmt/format.h>
 
+#include "hw/observe/hw_energy.h"
 #include "hw/observe/hw_stats.h"
 
 namespace vbsim::hw {
@@ -240,7 +241,35 @@ nlohmann::json Accelerator::hw_json() {
     j["warmup"] = statistics_->warmup_json();
     j["measured"] = statistics_->measured_json();
   }
+  // Energy and area, from the counters the run kept (nothing per cycle).
+  const TechFile& tech = technology();
+  const ReplacedUnits replaced = replaced_units();
+  j["energy"] = hw_energy_json(tech, config_, replayer_.options(), replayer_.stats(), c, j["memory"]["port"], replaced);
+  j["area"] = hw_area_json(tech, hw_area(tech, config_, replayer_.options(), replaced), replaced);
   return j;
+}
+
+const TechFile& Accelerator::technology() {
+  if (!tech_) tech_ = load_tech_file(default_tech_path());
+  return *tech_;
+}
+
+ReplacedUnits Accelerator::replaced_units() const {
+  ReplacedUnits out;
+  const auto add = [&out](const char* unit, const sc_core::sc_module* m) {
+    if (!m) return;
+    ReplacedUnit r{unit, m->name(), std::nullopt};
+    if (const auto* priced = dynamic_cast<const PricedUnitIf*>(m)) r.inventory = priced->inventory();
+    out.push_back(std::move(r));
+  };
+  if (cores_.size() > 0)
+    for (const char* unit : {"box_unit", "triangle_tester", "avoidance_unit", "l1_cache"})
+      add(unit, cores_[0].replacement(unit));
+  add("dispatcher", dispatcher_replaced_ ? dispatcher_module_.get() : nullptr);
+  add("l2_cache", l2_replacement_.get());
+  add("result_sink", sink_replacement_.get());
+  add("ray_source", source_module_.get());
+  return out;
 }
 
 nlohmann::json Accelerator::emission_json() const {

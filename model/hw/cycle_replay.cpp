@@ -115,14 +115,12 @@ CycleRunResult run_accelerator(const RunInput& input, const Scene& scene, const 
   r.stats.rays_dropped = r.stats.partial ? fed - done : 0;
   r.counters = acc->chip_counters();
   if (statistics && !r.stats.partial) statistics->finish(acc->statistics_sample(r.counters.cycles + 1, true));
+  // hw_json() prices the run's energy and area (nothing per cycle).
+  if (options.tech) acc->set_technology(*options.tech);
   r.hw = acc->hw_json();
   r.table = acc->hw_table();
-  // Energy and area, from the counters the run kept (nothing per cycle).
-  const TechFile tech = options.tech ? *options.tech : load_tech_file(default_tech_path());
-  r.hw["energy"] = hw_energy_json(tech, acc->config(), opt, r.stats, r.counters, r.hw["memory"]["port"]);
-  r.hw["area"] = hw_area_json(tech, hw_area(tech, acc->config(), opt));
   r.table += hw_energy_lines(r.hw["energy"], r.hw["area"]);
-  r.table += sram_range_lines(tech, acc->config());
+  r.table += sram_range_lines(acc->technology(), acc->config());
   if (vcd) vcd->write(options.vcd.path, r.counters.cycles);
   if (timeline) timeline->finish();
   return r;

@@ -96,6 +96,10 @@ int run(int argc, char** argv) {
               hw["instances"]["accelerator.l2_cache"]["dram_requests"].get<unsigned long long>());
   std::printf("core_0_l1_hit_rate %.4f\n", hw["instances"]["accelerator.core_0.l1_cache"]["hit_rate"].get<double>());
   std::printf("systemc_time_ns %.1f\n", sc_core::sc_time_stamp().to_seconds() * 1e9);
+  // The run's price (docs/energy.md), with the shipped technology file
+  // (accelerator.set_technology(path) chooses another).
+  std::printf("energy_pj_per_ray %.6g\n", hw["energy"]["per_ray_pj"].get<double>());
+  std::printf("chip_mm2 %.6g\n", hw["area"]["chip_mm2"].get<double>());
   std::printf("presets_dir %s\n", vbsim::presets_dir().c_str());
   return 0;
 }

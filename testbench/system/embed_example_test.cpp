@@ -33,6 +33,11 @@ TEST_CASE("a user's sc_main with its own memory target runs the accelerator", "[
     CHECK(std::stod(f->at("systemc_time_ns")) == Approx(2.5 * static_cast<double>(num(*f, "cycles"))));
   }
   CHECK(num(slow, "cycles") > num(fast, "cycles"));
+  // The library prices the run: the slower memory's longer run leaks longer, the chip is the same.
+  CHECK(std::stod(fast.at("energy_pj_per_ray")) > 0);
+  CHECK(std::stod(slow.at("energy_pj_per_ray")) > std::stod(fast.at("energy_pj_per_ray")));
+  CHECK(std::stod(slow.at("chip_mm2")) == std::stod(fast.at("chip_mm2")));
+  CHECK(std::stod(fast.at("chip_mm2")) > 1);
   CHECK(num(slow, "hits") == num(fast, "hits"));
 
   const auto dir = scratch_dir("embed");

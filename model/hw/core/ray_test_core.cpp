@@ -31,6 +31,7 @@ RayTestCore::RayTestCore(sc_core::sc_module_name name, uint32_t index, const HwC
   read_done_target.bind(*this);
   builtin_box_ = bind_unit(box, units.box_unit, "box_unit", index, config, "BoxUnitIf", box_unit_, replacements_,
                            [&](const char* n) { return std::make_unique<BoxUnit>(n, config.box); });
+  if (units.box_unit) replaced_box_ = replacements_.back().get();
   if (config.box_low.count > 0) {
     box_unit_low_ = std::make_unique<BoxUnit>("box_unit_low", config.box_low);
     box_low.bind(*box_unit_low_);
@@ -39,13 +40,16 @@ RayTestCore::RayTestCore(sc_core::sc_module_name name, uint32_t index, const HwC
                                 triangle_tester_, replacements_, [&](const char* n) {
                                   return std::make_unique<TriangleTester>(n, for_tester(config, tester).triangle, tester);
                                 });
+  if (units.triangle_tester) replaced_triangle_ = replacements_.back().get();
   builtin_avoidance_ = bind_unit(avoidance, units.avoidance_unit, "avoidance_unit", index, config, "AvoidanceUnitIf",
                                  avoidance_unit_, replacements_, [&](const char* n) {
                                    return std::make_unique<AvoidanceUnit>(n, config.avoidance, avoidance_config,
                                                                           avoidance_in_use);
                                  });
+  if (units.avoidance_unit) replaced_avoidance_ = replacements_.back().get();
   if (units.l1_cache) {
     replacements_.push_back(units.l1_cache("l1_cache", index, config));
+    replaced_l1_ = replacements_.back().get();
     memory.bind(replacement_as<MemoryReadIf>(*replacements_.back(), "MemoryReadIf"));
     l2_client_ = dynamic_cast<L2ClientIf*>(replacements_.back().get());
     if (l2_client_) l2_client_->read_done().bind(read_done_target);
@@ -68,6 +72,14 @@ RayTestCore::RayTestCore(sc_core::sc_module_name name, uint32_t index, const HwC
   declare_stat("refill_wait_cycles", "slot-cycles", "cycles stack refills waited for their data",
                c.refill_wait_cycles);
   declare_stat("spills", "entries", "stack entries pushed past the on-chip stack", c.spills);
+}
+
+sc_core::sc_module* RayTestCore::replacement(const std::string& unit) const {
+  if (unit == "box_unit") return replaced_box_;
+  if (unit == "triangle_tester") return replaced_triangle_;
+  if (unit == "avoidance_unit") return replaced_avoidance_;
+  if (unit == "l1_cache") return replaced_l1_;
+  return nullptr;
 }
 
 nlohmann::json RayTestCore::parameters() const {

@@ -63,6 +63,9 @@ class RayTestCore final : public sc_core::sc_module, public ReadDoneIf, public S
   L1Cache* l1() const { return l1_; }  ///< the built-in L1, or null
   /// A replacement L1 that reaches the L2 (L2ClientIf), or null.
   L2ClientIf* l2_client() const { return l2_client_; }
+  /// The replacement bound in the built-in unit's place (AcceleratorUnits
+  /// field `unit`: box_unit, triangle_tester, avoidance_unit, l1_cache), or null.
+  sc_core::sc_module* replacement(const std::string& unit) const;
 
   /// Pending reads' answers go to `resume(slot, ready)` (the scheduler).
   void set_resume(std::function<void(uint32_t, uint64_t)> resume) { resume_ = std::move(resume); }
@@ -82,6 +85,10 @@ class RayTestCore final : public sc_core::sc_module, public ReadDoneIf, public S
   AvoidanceUnit* builtin_avoidance_ = nullptr;
   L1Cache* l1_ = nullptr;
   L2ClientIf* l2_client_ = nullptr;
+  sc_core::sc_module* replaced_box_ = nullptr;
+  sc_core::sc_module* replaced_triangle_ = nullptr;
+  sc_core::sc_module* replaced_avoidance_ = nullptr;
+  sc_core::sc_module* replaced_l1_ = nullptr;
   std::unique_ptr<BoxUnit> box_unit_;
   std::unique_ptr<BoxUnit> box_unit_low_;
   std::unique_ptr<TriangleTester> triangle_tester_;

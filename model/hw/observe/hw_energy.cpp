@@ -33,6 +33,28 @@ double cache_bits(const CacheConfig& c) { return 8.0 * c.size_bytes; }
 /// cache whose objects are the reads' own priced at 64 bytes an entry).
 double object_cache_bytes(const ObjectCacheConfig& c) { return double(c.entries) * (c.bytes ? c.bytes : 64); }
 
+const ReplacedUnit* find_unit(const ReplacedUnits& replaced, const char* unit) {
+  for (const ReplacedUnit& r : replaced)
+    if (r.unit == unit) return &r;
+  return nullptr;
+}
+
+/// The declared inventory of a replaced unit that is priced, else null.
+const UnitInventory* inventory_of(const ReplacedUnit* r) { return r && r->priced() ? &*r->inventory : nullptr; }
+
+nlohmann::json replaced_json(const ReplacedUnits& replaced) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const ReplacedUnit& r : replaced)
+    list.push_back({{"unit", r.unit}, {"instance", r.instance}, {"priced", r.priced()}});
+  return list;
+}
+
+bool all_priced(const ReplacedUnits& replaced) {
+  for (const ReplacedUnit& r : replaced)
+    if (!r.priced()) return false;
+  return true;
+}
+
 }  // namespace
 
 double HwArea::chip() const {
@@ -40,7 +62,7 @@ double HwArea::chip() const {
          emission_unit * emission_lanes + (ray_records + stack + l1_cache) * cores + l2_cache;
 }
 
-HwArea hw_area(const TechFile& t, const HwConfig& given, const ReplayOptions& opt) {
+HwArea hw_area(const TechFile& t, const HwConfig& given, const ReplayOptions& opt, const ReplacedUnits& replaced) {
   const HwConfig cfg = for_tester(given, opt.tester);  // the tester's own issue interval
   const MethodOps mo = method_ops(opt.method);
   HwArea a;
@@ -56,6 +78,25 @@ HwArea hw_area(const TechFile& t, const HwConfig& given, const ReplayOptions& op
   a.triangle_tester = t.area_mm2(shared_over(triangle_test_ops(opt.tester) + mo.candidate, cfg.triangle.issue_interval)) +
                       t.area_mm2(triangle_setup_ops(opt.tester));
   a.avoidance_unit = a.avoidance_units ? t.area_mm2(shared_over(mo.suspect, cfg.avoidance.issue_interval)) : 0.0;
+  // Replaced units: their declared operators and register bits, or nothing.
+  if (const ReplacedUnit* r = find_unit(replaced, "box_unit")) {
+    const UnitInventory* i = inventory_of(r);
+    a.box_unit = i ? t.area_mm2(shared_over(opt.bvh.width * i->per_operation, cfg.box.issue_interval)) +
+                         t.area_mm2(i->per_ray) + i->storage_bits * t.register_bit_mm2
+                   : 0.0;
+  }
+  if (const ReplacedUnit* r = find_unit(replaced, "triangle_tester")) {
+    const UnitInventory* i = inventory_of(r);
+    a.triangle_tester = i ? t.area_mm2(shared_over(i->per_operation + mo.candidate, cfg.triangle.issue_interval)) +
+                                t.area_mm2(i->per_ray) + i->storage_bits * t.register_bit_mm2
+                          : 0.0;
+  }
+  if (const ReplacedUnit* r = find_unit(replaced, "avoidance_unit")) {
+    const UnitInventory* i = inventory_of(r);
+    a.avoidance_unit = i && a.avoidance_units ? t.area_mm2(shared_over(i->per_operation, cfg.avoidance.issue_interval)) +
+                                                    i->storage_bits * t.register_bit_mm2
+                                              : 0.0;
+  }
   // An emission unit of `emission_width` starts that many operations a cycle, so a
   // ray's n operations share each operator kind over ceil(n / width) cycles; with
   // no unit, one operator per operation (a fully pipelined lane).
@@ -63,6 +104,7 @@ HwArea hw_area(const TechFile& t, const HwConfig& given, const ReplayOptions& op
   const int n = mo.emission.total();
   const uint32_t interval = width > 0 && n > 0 ? (static_cast<uint32_t>(n) + width - 1) / width : 1;
   a.emission_unit = t.area_mm2(shared_over(mo.emission, interval)) + t.area_mm2(mo.result);
+  if (find_unit(replaced, "ray_source")) a.emission_unit = 0;
   const double slots = cfg.slots_per_core;
   a.ray_records = slots * opt.method.bits_per_ray() * t.register_bit_mm2;
   a.method_record_bits = slots * (opt.method.bits_per_ray() - kBaseRayBits) * t.register_bit_mm2;
@@ -75,11 +117,13 @@ HwArea hw_area(const TechFile& t, const HwConfig& given, const ReplayOptions& op
     a.l1_cache = cache_bits(cfg.memory.l1) * t.sram_bit_mm2;
     a.l2_cache = cache_bits(cfg.memory.l2) * t.sram_bit_mm2;
   }
+  if (find_unit(replaced, "l1_cache")) a.l1_cache = 0;
+  if (find_unit(replaced, "l2_cache")) a.l2_cache = 0;
   return a;
 }
 
-nlohmann::json hw_area_json(const TechFile& t, const HwArea& a) {
-  return {{"tech", t.path},
+nlohmann::json hw_area_json(const TechFile& t, const HwArea& a, const ReplacedUnits& replaced) {
+  nlohmann::json j = {{"tech", t.path},
           {"per_instance_mm2",
            {{"box_unit", a.box_unit},
             {"triangle_tester", a.triangle_tester},
@@ -100,6 +144,11 @@ nlohmann::json hw_area_json(const TechFile& t, const HwArea& a) {
           {"avoidance_units_mm2", a.avoidance_units_chip()},
           {"ray_record_bits_mm2", a.ray_records * a.cores},
           {"method_record_bits_mm2", a.method_record_bits_chip()}};
+  if (!replaced.empty()) {
+    j["replaced_units"] = replaced_json(replaced);
+    j["priced"] = all_priced(replaced);
+  }
+  return j;
 }
 
 std::string hw_area_table(const TechFile& t, const HwArea& a) {
@@ -157,9 +206,33 @@ std::string sram_range_lines(const TechFile& t, const HwConfig& cfg) {
 }
 
 nlohmann::json hw_energy_json(const TechFile& t, const HwConfig& cfg, const ReplayOptions& opt, const ReplayStats& stats,
-                              const HwCounters& c, const nlohmann::json& memory) {
-  const OperationEnergy ops = operation_energy(t, opt.method, opt.tester, stats);
-  const HwArea area = hw_area(t, cfg, opt);
+                              const HwCounters& c, const nlohmann::json& memory, const ReplacedUnits& replaced) {
+  OperationEnergy ops = operation_energy(t, opt.method, opt.tester, stats);
+  const HwArea area = hw_area(t, cfg, opt, replaced);
+  {
+    // Replaced units: their declared operations, or nothing.
+    const KindStats k = stats.total();
+    const double rays = static_cast<double>(k.rays);
+    if (const ReplacedUnit* r = find_unit(replaced, "box_unit")) {
+      const UnitInventory* i = inventory_of(r);
+      ops.box = i ? k.traversal.box_tests * t.energy_pj(i->per_operation) + rays * t.energy_pj(i->per_ray) : 0.0;
+    }
+    if (const ReplacedUnit* r = find_unit(replaced, "triangle_tester")) {
+      const UnitInventory* i = inventory_of(r);
+      ops.triangle =
+          i ? k.traversal.triangle_tests * t.energy_pj(i->per_operation) + rays * t.energy_pj(i->per_ray) : 0.0;
+    }
+    if (const ReplacedUnit* r = find_unit(replaced, "avoidance_unit")) {
+      const UnitInventory* i = inventory_of(r);
+      const double avoidance = i ? k.candidates.suspects * t.energy_pj(i->per_operation) : 0.0;
+      ops.method += avoidance - ops.avoidance;
+      ops.avoidance = avoidance;
+    }
+    if (find_unit(replaced, "ray_source")) {
+      ops.method -= ops.emission + ops.result;
+      ops.emission = ops.result = 0;
+    }
+  }
   // Memory: every L1 access reads a line, every miss writes one (a fill,
   // priced as an access); likewise the L2; DRAM per 64 bits moved; a stack
   // spill writes one 16-byte entry through the L1.
@@ -189,6 +262,8 @@ nlohmann::json hw_energy_json(const TechFile& t, const HwConfig& cfg, const Repl
     spills = static_cast<double>(c.spills) * (BvhStepper<ThreeHalfPlaneTester>::kEntryBytes / 8.0) *
              t.sram_64bit_pj(cfg.memory.l1.size_bytes);
   }
+  if (find_unit(replaced, "l1_cache")) l1 = spills = 0;
+  if (find_unit(replaced, "l2_cache")) l2 = dram = 0;  // the replacement is the L2 and the memory behind it
   const double dynamic = ops.total() + l1 + l2 + dram + spills;
   const double seconds = static_cast<double>(c.cycles) / (cfg.clock_mhz * 1e6);
   const double leak_pj_per_mm2 = t.leakage_w_per_mm2 * seconds * 1e12;
@@ -205,6 +280,10 @@ nlohmann::json hw_energy_json(const TechFile& t, const HwConfig& cfg, const Repl
                       : cfg.memory.objects.enabled ? "object caches: SRAM per object read or written, DRAM per 64 bits"
                                                    : "SRAM per 64-bit access, DRAM per 64 bits";
   if (extrapolated) j["sram_size_extrapolated"] = true;
+  if (!replaced.empty()) {
+    j["replaced_units"] = replaced_json(replaced);
+    j["priced"] = all_priced(replaced);
+  }
   j["dynamic_pj"] = operation_parts_json(ops);
   j["dynamic_pj"]["l1"] = l1;
   j["dynamic_pj"]["l2"] = l2;
@@ -231,7 +310,14 @@ nlohmann::json hw_energy_json(const TechFile& t, const HwConfig& cfg, const Repl
 }
 
 std::string hw_energy_lines(const nlohmann::json& e, const nlohmann::json& a) {
-  return fmt::format("  energy {:.4g} pJ/ray ({:.4g} dynamic, {:.4g} static; the method {:.4g} pJ/ray)   {:.4g} Mrays/J   "
+  std::string unpriced;
+  if (e.contains("replaced_units"))
+    for (const auto& r : e["replaced_units"])
+      if (!r["priced"].get<bool>())
+        unpriced += fmt::format("  not priced: {} (a replaced {} that declares no operation inventory; its energy and "
+                                "area are left out)\n",
+                                r["instance"].get<std::string>(), r["unit"].get<std::string>());
+  return unpriced + fmt::format("  energy {:.4g} pJ/ray ({:.4g} dynamic, {:.4g} static; the method {:.4g} pJ/ray)   {:.4g} Mrays/J   "
                      "{:.4g} W\n  area {:.4f} mm2 (avoidance units {:.5f} mm2, the method's ray-record bits {:.5f} mm2)\n",
                      e["per_ray_pj"].get<double>(), e["dynamic_per_ray_pj"].get<double>(),
                      e["static_per_ray_pj"].get<double>(), e["method_per_ray_pj"].get<double>(),

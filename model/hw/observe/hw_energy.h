@@ -12,6 +12,7 @@
 #include "energy/tech_file.h"
 #include "hw/hw_config.h"
 #include "hw/hw_counters.h"
+#include "hw/unit_inventory.h"
 #include "replay/replay_options.h"
 #include "replay/replay_stats.h"
 
@@ -34,9 +35,14 @@ struct HwArea {
 };
 
 /// A pipeline group with `issue_interval` k shares each operator over k
-/// operations: its operators are ceil(ops / k) of each kind.
-HwArea hw_area(const TechFile& tech, const HwConfig& cfg, const ReplayOptions& opt);
-nlohmann::json hw_area_json(const TechFile& tech, const HwArea& a);
+/// operations: its operators are ceil(ops / k) of each kind. A `replaced` box
+/// unit, triangle tester or avoidance unit is priced from its declared
+/// inventory (unit_inventory.h), one that declares none at 0 (not priced); a
+/// replaced L1 or L2 (and what is behind it) or ray source is not priced.
+HwArea hw_area(const TechFile& tech, const HwConfig& cfg, const ReplayOptions& opt, const ReplacedUnits& replaced = {});
+/// With replaced units: `replaced_units` [{unit, instance, priced}] and
+/// `priced` (false when one of them is not).
+nlohmann::json hw_area_json(const TechFile& tech, const HwArea& a, const ReplacedUnits& replaced = {});
 /// The area table `vbsim hw --area` prints.
 std::string hw_area_table(const TechFile& tech, const HwArea& a);
 
@@ -50,8 +56,11 @@ std::string sram_range_lines(const TechFile& tech, const HwConfig& cfg);
 /// The `hw.energy` section: dynamic (operations and memory) and static (leakage
 /// of the chip's area over cycles / clock) energy, per ray, per unit instance,
 /// Mrays/J. `memory` is the hw section's memory.port (Accelerator::memory_stats).
+/// Replaced units are priced as hw_area says, their operations' energy from
+/// their inventories' (0 for a unit not priced), and listed as hw_area_json does.
 nlohmann::json hw_energy_json(const TechFile& tech, const HwConfig& cfg, const ReplayOptions& opt,
-                              const ReplayStats& stats, const HwCounters& counters, const nlohmann::json& memory);
+                              const ReplayStats& stats, const HwCounters& counters, const nlohmann::json& memory,
+                              const ReplacedUnits& replaced = {});
 /// Two lines for the terminal table.
 std::string hw_energy_lines(const nlohmann::json& energy, const nlohmann::json& area);
 

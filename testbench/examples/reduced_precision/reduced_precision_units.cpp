@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "datapath/datapath_ops.h"
 #include "datapath/reduced_precision.h"
 #include "hw/core/pipeline_units.h"
 
@@ -48,6 +49,20 @@ BoxAnswer ReducedPrecisionBoxUnit::test_boxes(const BoxOp& op) {
   const uint64_t issue = pipes_.issue(op.ready, op.now);
   a.schedule = {issue, issue + latency_};
   return a;
+}
+
+UnitInventory ReducedPrecisionBoxUnit::inventory() const {
+  UnitInventory i;
+  i.per_operation = box_test_ops() + rounding_ops();
+  i.per_ray = box_setup_ops();
+  return i;
+}
+
+UnitInventory ReducedPrecisionTriangleTester::inventory() const {
+  UnitInventory i;
+  i.per_operation = triangle_test_ops(kind_) + rounding_ops();
+  i.per_ray = triangle_setup_ops(kind_);
+  return i;
 }
 
 ReducedPrecisionTriangleTester::ReducedPrecisionTriangleTester(sc_core::sc_module_name name, const UnitConfig& timing,

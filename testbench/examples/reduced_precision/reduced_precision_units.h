@@ -17,6 +17,11 @@
 //                                 fraction bits, then the configured tester: the
 //                                 triangles move, so hits change (counted against
 //                                 the full-precision run).
+//
+// Both declare their operation inventory (PricedUnitIf, hw/unit_inventory.h),
+// so that hw_json()'s energy and area price them: the built-in unit's
+// operations plus the rounding, counted from datapath/reduced_precision.h at
+// full width (a technology file has no narrower operators).
 #pragma once
 #include <cstdint>
 
@@ -27,11 +32,12 @@
 #include "hw/hw_config.h"
 #include "hw/hw_counters.h"
 #include "hw/unit_interfaces.h"
+#include "hw/unit_inventory.h"
 #include "hw/unit_pipelines.h"
 
 namespace vbsim::hw {
 
-class ReducedPrecisionBoxUnit final : public sc_core::sc_module, public BoxUnitIf {
+class ReducedPrecisionBoxUnit final : public sc_core::sc_module, public BoxUnitIf, public PricedUnitIf {
  public:
   sc_core::sc_export<BoxUnitIf> target;
 
@@ -39,6 +45,12 @@ class ReducedPrecisionBoxUnit final : public sc_core::sc_module, public BoxUnitI
   ReducedPrecisionBoxUnit(sc_core::sc_module_name name, const UnitConfig& timing, int bits);
   BoxAnswer test_boxes(const BoxOp& op) override;
   int bits() const { return bits_; }
+  /// Rounding one box's six bounds outward (round_magnitude): per bound a test
+  /// of the dropped bits and an add or mask (2 int), the direction chosen by
+  /// the sign (1 select).
+  static OpCounts rounding_ops() { return ops::iadd(12) + ops::fsel(6); }
+  /// Per box: the built-in slab test and the rounding; per ray: the built-in set-up.
+  UnitInventory inventory() const override;
 
  private:
   int bits_;
@@ -47,7 +59,7 @@ class ReducedPrecisionBoxUnit final : public sc_core::sc_module, public BoxUnitI
   UnitPipelines pipes_;
 };
 
-class ReducedPrecisionTriangleTester final : public sc_core::sc_module, public TriangleTesterIf {
+class ReducedPrecisionTriangleTester final : public sc_core::sc_module, public TriangleTesterIf, public PricedUnitIf {
  public:
   sc_core::sc_export<TriangleTesterIf> target;
 
@@ -55,6 +67,11 @@ class ReducedPrecisionTriangleTester final : public sc_core::sc_module, public T
   ReducedPrecisionTriangleTester(sc_core::sc_module_name name, const UnitConfig& timing, TesterKind kind, int bits);
   TriangleAnswer test_triangle(const TriangleOp& op) override;
   int bits() const { return bits_; }
+  /// Rounding a triangle's nine coordinates to nearest (round_nearest): per
+  /// coordinate the tie bit's test, the add and the mask (3 int).
+  static OpCounts rounding_ops() { return ops::iadd(27); }
+  /// Per triangle: the configured tester's test and the rounding; per ray: its set-up.
+  UnitInventory inventory() const override;
 
  private:
   TesterKind kind_;
