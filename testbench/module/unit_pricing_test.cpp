@@ -34,7 +34,7 @@ ReplayOptions validity_bit() {
 
 /// The bundled trace through an accelerator built as a user's sc_main builds
 /// it (small preset, validity bit), with `units`; its hw_json() after the run,
-/// with the run's box tests as `box_tests`.
+/// with the run's box and triangle tests as `box_tests`, `triangle_tests`.
 nlohmann::json embedded_run(const AcceleratorUnits& units, const std::string& tech = "") {
   const SimulationContext context;
   auto source = open_trace(kTrace);
@@ -47,6 +47,7 @@ nlohmann::json embedded_run(const AcceleratorUnits& units, const std::string& te
   acc.check();
   nlohmann::json hw = acc.hw_json();
   hw["box_tests"] = acc.replayer().stats().total().traversal.box_tests;
+  hw["triangle_tests"] = acc.replayer().stats().total().traversal.triangle_tests;
   return hw;
 }
 
@@ -122,6 +123,28 @@ TEST_CASE("a replaced box unit that declares its operations is priced with them"
   CHECK(hw["energy"]["replaced_units"][0]["priced"] == true);
   CHECK(hw["energy"]["priced"] == true);
   CHECK(hw["area"]["priced"] == true);
+}
+
+TEST_CASE("a replaced triangle tester that declares its operations is priced with them", "[module][energy]") {
+  AcceleratorUnits units;
+  units.triangle_tester = reduced_precision_triangle_tester(23, TesterKind::ThreeHalfPlane);
+  const nlohmann::json hw = embedded_run(units);
+  const nlohmann::json builtin = embedded_run({});
+  REQUIRE(hw["cycles"] == builtin["cycles"]);
+  REQUIRE(hw["energy"]["priced"] == true);
+  // 27 int adds more per triangle tested (nine coordinates rounded): 2.7 pJ each at 45 nm.
+  CHECK(load_tech_file(default_tech_path()).energy_pj(ReducedPrecisionTriangleTester::rounding_ops()) == Approx(2.7));
+  const double triangle_tests = hw["triangle_tests"].get<double>();
+  REQUIRE(triangle_tests > 0);
+  CHECK(hw["energy"]["dynamic_pj"]["triangle"].get<double>() -
+            builtin["energy"]["dynamic_pj"]["triangle"].get<double>() ==
+        Approx(triangle_tests * 2.7));
+  // Each tester (issue interval 1) has 27 int adders more: 27 x 0.00031633 mm2.
+  CHECK(hw["area"]["per_instance_mm2"]["triangle_tester"].get<double>() -
+            builtin["area"]["per_instance_mm2"]["triangle_tester"].get<double>() ==
+        Approx(27 * 0.00031633));
+  // The other units are the built-in ones, priced as before.
+  CHECK(hw["energy"]["dynamic_pj"]["box"] == builtin["energy"]["dynamic_pj"]["box"]);
 }
 
 TEST_CASE("a replaced unit that declares no operations is marked not priced, never priced as the built-in one",
