@@ -103,6 +103,14 @@ TEST_CASE("the 7 nm technology file prices every preset, smaller and cheaper tha
     const double chip45 = nlohmann::json::parse(read_file(a45))["area"]["chip_mm2"].get<double>();
     CHECK(chip7 > 0);
     CHECK(chip7 < chip45 / 5);
+    // A cycle-level replay on the preset, priced at 7 nm: the same chip.
+    const std::string s = (dir / ("s7-" + preset + ".json")).string();
+    REQUIRE(run_vbsim("replay -q " + source_dir() + "/traces/bunny/paths.jsonl -m validity-bit --mode cycle --preset " +
+                      preset + " --tech " + tech7 + " --stats " + s)
+                .exit_code == 0);
+    const nlohmann::json hw = nlohmann::json::parse(read_file(s))["hw"];
+    CHECK(hw["energy"]["per_ray_pj"].get<double>() > 0);
+    CHECK(hw["area"]["chip_mm2"].get<double>() == chip7);
   }
   const std::string trace = source_dir() + "/traces/bunny/paths.jsonl";
   const std::string s7 = (dir / "s7.json").string(), s45 = (dir / "s45.json").string();
