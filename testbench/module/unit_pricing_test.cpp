@@ -33,14 +33,16 @@ ReplayOptions validity_bit() {
 }
 
 /// The bundled trace through an accelerator built as a user's sc_main builds
-/// it (small preset, validity bit), with `units`; its hw_json() after the run,
+/// it (small preset, `cores` cores unless 0, validity bit), with `units`; its hw_json() after the run,
 /// with the run's box and triangle tests as `box_tests`, `triangle_tests`.
-nlohmann::json embedded_run(const AcceleratorUnits& units, const std::string& tech = "") {
+nlohmann::json embedded_run(const AcceleratorUnits& units, const std::string& tech = "", uint32_t cores = 0) {
   const SimulationContext context;
   auto source = open_trace(kTrace);
   const SceneAndBvh sb = load_trace_scene(source->header());
   source->set_triangle_count(sb.scene.size());
-  Accelerator acc("accelerator", load_preset("small", "test"), sb.scene, sb.bvh, validity_bit(), units);
+  HwConfig cfg = load_preset("small", "test");
+  if (cores) cfg.cores = cores;
+  Accelerator acc("accelerator", cfg, sb.scene, sb.bvh, validity_bit(), units);
   if (!tech.empty()) acc.set_technology(tech);
   acc.set_feed([&](TraceRay& ray) { return source->next(ray); });
   sc_core::sc_start();
@@ -166,4 +168,29 @@ TEST_CASE("a replaced unit that declares no operations is marked not priced, nev
   CHECK_THAT(hw_energy_lines(hw["energy"], hw["area"]),
              Catch::Contains("not priced: accelerator.core_0.box_unit (a replaced box_unit that declares no operation "
                              "inventory"));
+}
+
+namespace {
+
+/// A core's whole memory: every read takes 20 cycles (no arrays to price).
+class FixedLatencyMemory final : public sc_core::sc_module, public MemoryReadIf {
+ public:
+  explicit FixedLatencyMemory(sc_core::sc_module_name n) : sc_core::sc_module(n) {}
+  uint64_t read(uint64_t, uint32_t, uint64_t now, uint32_t) override { return now + 20; }
+};
+
+}  // namespace
+
+TEST_CASE("a replaced L1 is not priced: the built-in L1's array and accesses are left out", "[module][energy]") {
+  AcceleratorUnits units;
+  units.l1_cache = [](const char* name, uint32_t, const HwConfig&) { return std::make_unique<FixedLatencyMemory>(name); };
+  const nlohmann::json hw = embedded_run(units, "", 1);  // one core: its memory path is the replacement alone
+  CHECK(hw["energy"]["priced"] == false);
+  CHECK(hw["energy"]["replaced_units"][0] ==
+        nlohmann::json({{"unit", "l1_cache"}, {"instance", "accelerator.core_0.l1_cache"}, {"priced", false}}));
+  CHECK(hw["energy"]["dynamic_pj"]["l1"].get<double>() == 0);
+  CHECK(hw["area"]["per_instance_mm2"]["l1_cache"].get<double>() == 0);
+  CHECK(hw["area"]["chip_mm2"].get<double>() > 0);
+  CHECK_THAT(hw_energy_lines(hw["energy"], hw["area"]),
+             Catch::Contains("not priced: accelerator.core_0.l1_cache (a replaced l1_cache (only a box unit"));
 }

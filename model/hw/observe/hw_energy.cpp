@@ -313,10 +313,15 @@ std::string hw_energy_lines(const nlohmann::json& e, const nlohmann::json& a) {
   std::string unpriced;
   if (e.contains("replaced_units"))
     for (const auto& r : e["replaced_units"])
-      if (!r["priced"].get<bool>())
-        unpriced += fmt::format("  not priced: {} (a replaced {} that declares no operation inventory; its energy and "
-                                "area are left out)\n",
-                                r["instance"].get<std::string>(), r["unit"].get<std::string>());
+      if (!r["priced"].get<bool>()) {
+        const std::string unit = r["unit"].get<std::string>();
+        const bool declarable = unit == "box_unit" || unit == "triangle_tester" || unit == "avoidance_unit";
+        unpriced += fmt::format("  not priced: {} (a replaced {} {}; its energy and area are left out)\n",
+                                r["instance"].get<std::string>(), unit,
+                                declarable ? "that declares no operation inventory"
+                                           : "(only a box unit, triangle tester or avoidance unit is priced from the "
+                                             "operations it declares)");
+      }
   return unpriced + fmt::format("  energy {:.4g} pJ/ray ({:.4g} dynamic, {:.4g} static; the method {:.4g} pJ/ray)   {:.4g} Mrays/J   "
                      "{:.4g} W\n  area {:.4f} mm2 (avoidance units {:.5f} mm2, the method's ray-record bits {:.5f} mm2)\n",
                      e["per_ray_pj"].get<double>(), e["dynamic_per_ray_pj"].get<double>(),
