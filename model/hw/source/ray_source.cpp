@@ -89,7 +89,8 @@ RaySource::RaySource(sc_core::sc_module_name name, const HwConfig& config, Funct
                "cycles a lane had nothing ready because the window was full of unfinished rays",
                e.lane_idle_window_cycles);
   declare_stat("lane_idle_shader_cycles", "lane-cycles",
-               "cycles a lane had nothing ready because a closed-loop shader had no ray until a result arrived",
+               "cycles a lane had nothing ready because a closed-loop shader had no ray until a result arrived, "
+               "or rays were still on the shader cores (hw.shader.cores)",
                e.lane_idle_shader_cycles);
   declare_stat("bundles", "calls", "bundle calls of the emission API", e.bundles);
   declare_stat("bundled_rays", "rays", "rays emitted by bundle calls", e.bundled_rays);
@@ -427,7 +428,7 @@ void RaySource::drain(uint32_t lane_id, uint64_t now) {
 void RaySource::start_idle_lanes(uint64_t now) {
   for (uint32_t l = 0; l < lanes_count_; ++l) {
     Lane& lane = lanes_[l];
-    if (lane.emitting || lane.holding) continue;  // busy or holding
+    if (lane.emitting || lane.holding || lane.size == pipe_capacity_) continue;  // busy, holding, or its pipe full
     try_start(l, now);
     if (!lanes_[l].emitting) return;  // nothing more to emit now
   }
@@ -491,6 +492,7 @@ void RaySource::go_idle(uint32_t lane_id, uint64_t now) {
   Lane& lane = lanes_[lane_id];
   account_idle(lane, now);  // a lane idle already: its time so far, under the reason it had
   lane.idle = waiting_count_                 ? Idle::Dependency
+              : shading_ > 0                 ? Idle::Shader  // rays on the shader cores
               : ended_                       ? Idle::End
               : next_ > base_ + window_      ? Idle::Window
                                              : Idle::Shader;
