@@ -21,7 +21,14 @@ namespace {
 using config_fields::fail;
 using config_fields::Fields;
 
-/// A figure {"value": number >= 0, "source": string}; the value is required.
+/// The largest figure a technology file may give (pJ, mm2, W/mm2): a billion
+/// times the figures of any real node, and small enough that a run's totals
+/// (figures times counts up to 2^64) stay finite in double.
+constexpr double kMaxFigure = 1e9;
+/// The largest SRAM size of the table, bytes (1 TiB).
+constexpr double kMaxSramBytes = 1099511627776.0;
+
+/// A figure {"value": number in [0, kMaxFigure], "source": string}; the value is required.
 double figure(Fields& parent, const std::string& key) {
   const nlohmann::json* v = parent.get(key);
   const std::string field = parent.path(key);
@@ -31,6 +38,8 @@ double figure(Fields& parent, const std::string& key) {
   if (!f.get("value")) fail(parent.file(), field + ".value", "missing");
   f.number("value", value);
   if (!(value >= 0)) fail(parent.file(), field + ".value", "must be >= 0");
+  if (value > kMaxFigure)
+    fail(parent.file(), field + ".value", fmt::format("{:g} is beyond {:g}: no node's figure is that large", value, kMaxFigure));
   if (const auto* s = f.get("source"); s && !s->is_string()) fail(parent.file(), field + ".source", "must be a string");
   return value;
 }
@@ -77,8 +86,11 @@ TechFile load_tech_file(const std::string& path) {
       pf.number("value", p.pj);
       if (const auto* src = pf.get("source"); src && !src->is_string())
         fail(path, field + ".source", "must be a string");
-      if (!(p.bytes > 0)) fail(path, field + ".bytes", "must be > 0");
+      if (!(p.bytes >= 1 && p.bytes <= kMaxSramBytes) || p.bytes != std::floor(p.bytes))
+        fail(path, field + ".bytes", fmt::format("{:g} must be a whole number of bytes from 1 to 2^40", p.bytes));
       if (!(p.pj > 0)) fail(path, field + ".value", "must be > 0");
+      if (p.pj > kMaxFigure)
+        fail(path, field + ".value", fmt::format("{:g} is beyond {:g}: no node's figure is that large", p.pj, kMaxFigure));
       if (!t.sram.empty() && !(p.bytes > t.sram.back().bytes))
         fail(path, field + ".bytes", "sizes must be listed in ascending order, each once");
       t.sram.push_back(p);

@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <functional>
 
 #include "datapath/datapath_ops.h"
 #include "energy/tech_file.h"
@@ -147,4 +148,33 @@ TEST_CASE("tech file: the shipped 7 nm file loads, every figure with its source"
     CHECK((estimate || cited));
     CHECK(source.size() > 40);
   }
+}
+
+TEST_CASE("tech file: figures too large to total and SRAM sizes that are no sizes are refused", "[tech]") {
+  // A figure near the double limit once priced a run as per_ray_pj null and
+  // 0 Mrays/J with exit 0; SRAM sizes of 2^64 and 8192.5 bytes were accepted.
+  TempDir dir("tech_file_limits_test");
+  const std::string path = dir.file("tech.json");
+  const auto broken = [&](const std::function<void(nlohmann::json&)>& edit) {
+    nlohmann::json j = flat_tech(2);
+    edit(j);
+    write_file(path, j.dump());
+    return error_of(path);
+  };
+  CHECK(broken([](nlohmann::json& j) { j["energy_pj"]["fp32_add"]["value"] = 1.797e308; }) ==
+        path + ": field 'energy_pj.fp32_add.value': 1.797e+308 is beyond 1e+09: no node's figure is that large");
+  CHECK(broken([](nlohmann::json& j) { j["area_mm2"]["sram_bit"]["value"] = 1e300; }) ==
+        path + ": field 'area_mm2.sram_bit.value': 1e+300 is beyond 1e+09: no node's figure is that large");
+  CHECK(broken([](nlohmann::json& j) { j["leakage_w_per_mm2"]["value"] = 2e9; }) ==
+        path + ": field 'leakage_w_per_mm2.value': 2e+09 is beyond 1e+09: no node's figure is that large");
+  CHECK(broken([](nlohmann::json& j) { j["sram_read_64bit_pj"][1]["bytes"] = 18446744073709551615.0; }) ==
+        path + ": field 'sram_read_64bit_pj[1].bytes': 1.84467e+19 must be a whole number of bytes from 1 to 2^40");
+  CHECK(broken([](nlohmann::json& j) { j["sram_read_64bit_pj"][1]["bytes"] = 8192.5; }) ==
+        path + ": field 'sram_read_64bit_pj[1].bytes': 8192.5 must be a whole number of bytes from 1 to 2^40");
+  CHECK(broken([](nlohmann::json& j) { j["sram_read_64bit_pj"][0]["value"] = 1e300; }) ==
+        path + ": field 'sram_read_64bit_pj[0].value': 1e+300 is beyond 1e+09: no node's figure is that large");
+  // The largest figures allowed still price a run finitely: a billion pJ per operation.
+  write_file(path, flat_tech(1e9).dump());
+  const TechFile t = load_tech_file(path);
+  CHECK(std::isfinite(t.energy_pj(box_test_ops()) * 1e12));
 }
