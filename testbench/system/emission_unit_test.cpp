@@ -26,6 +26,15 @@ nlohmann::json source_of(const std::string& method, const std::string& config, c
   return nlohmann::json::parse(read_file(stats))["hw"]["source"];
 }
 
+/// The first `n` lines of a ray log (--ray-log), parsed.
+std::vector<nlohmann::json> first_rays(const std::string& log, size_t n) {
+  std::istringstream lines(read_file(log));
+  std::string line;
+  std::vector<nlohmann::json> rays;
+  while (rays.size() < n && std::getline(lines, line)) rays.push_back(nlohmann::json::parse(line));
+  return rays;
+}
+
 }  // namespace
 
 TEST_CASE("the emission unit's cycles follow each method's operation count", "[cli][hw][emission]") {
@@ -85,10 +94,7 @@ TEST_CASE("the emission unit's depth delays a ray, not its lane", "[cli][hw][emi
   const RunResult r = run_vbsim("replay -q " + source_dir() + "/traces/bunny/paths.jsonl --mode cycle --deps off -m tmin"
                                 " --config " + (dir / "unit.json").string() + " --ray-log " + log);
   REQUIRE(r.exit_code == 0);
-  std::istringstream lines(read_file(log));
-  std::string line;
-  std::vector<nlohmann::json> rays;
-  while (rays.size() < 3 && std::getline(lines, line)) rays.push_back(nlohmann::json::parse(line));
+  const std::vector<nlohmann::json> rays = first_rays(log, 3);
   REQUIRE(rays.size() == 3);
   CHECK(rays[0]["emit"] == 0);
   CHECK(rays[0]["start"] == 8);
@@ -111,10 +117,7 @@ TEST_CASE("with shader cores a ray reaches its lane after its arithmetic there",
   const RunResult r = run_vbsim("replay -q " + source_dir() + "/traces/bunny/paths.jsonl --mode cycle --deps off -m tmin"
                                 " --config " + (dir / "cores.json").string() + " --ray-log " + log + " --stats " + stats);
   REQUIRE(r.exit_code == 0);
-  std::istringstream lines(read_file(log));
-  std::string line;
-  std::vector<nlohmann::json> rays;
-  while (rays.size() < 2 && std::getline(lines, line)) rays.push_back(nlohmann::json::parse(line));
+  const std::vector<nlohmann::json> rays = first_rays(log, 2);
   REQUIRE(rays.size() == 2);
   CHECK(rays[0]["ready"] == 0);
   CHECK(rays[0]["emit"] == 11);
