@@ -64,10 +64,11 @@ Accelerator::Accelerator(sc_core::sc_module_name name, const HwConfig& config, c
     dispatcher_ = d.get();
     dispatcher_module_ = std::move(d);
   }
+  build_shared_units(units, options);
   const bool caches = config.memory.hierarchy();
   cores_.init(config.cores, [&](const char* n, size_t i) {
     return new RayTestCore(n, static_cast<uint32_t>(i), config, units, options.tester, options.method.avoidance,
-                           avoidance_in_use_, caches);
+                           avoidance_in_use_, caches, core_shared_[i]);
   });
   if (config.memory.ideal) {
     ideal_ = std::make_unique<IdealMemory>("memory", config.memory.ideal_latency);
@@ -135,6 +136,37 @@ Accelerator::Accelerator(sc_core::sc_module_name name, const HwConfig& config, c
 }
 
 Accelerator::~Accelerator() = default;
+
+void Accelerator::build_shared_units(const AcceleratorUnits& units, const ReplayOptions& options) {
+  core_shared_.assign(config_.cores, SharedUnits{});
+  // One instance of kind `kind` for each group of `u.share` cores, each core's
+  // entry `field` pointing at its group's.
+  const auto share = [&](const char* key, const char* kind, const UnitConfig& u, bool replaced, auto make,
+                         auto field) {
+    if (u.share <= 1 || u.count == 0) return;
+    if (replaced)
+      throw std::invalid_argument(
+          fmt::format("hw.{}.share: a replaced {} is built per core (share must be 1)", key, kind));
+    for (uint32_t g = 0; g < unit_groups(u, config_.cores); ++g) {
+      auto unit = make(fmt::format("shared_{}_{}", kind, g).c_str());
+      for (uint32_t c = g * u.share; c < std::min(config_.cores, (g + 1) * u.share); ++c)
+        core_shared_[c].*field = unit.get();
+      shared_units_.push_back(std::move(unit));
+    }
+  };
+  share("box", "box_unit", config_.box, bool(units.box_unit),
+        [&](const char* n) { return std::make_unique<BoxUnit>(n, config_.box); }, &SharedUnits::box);
+  share("box_low", "box_unit_low", config_.box_low, false,
+        [&](const char* n) { return std::make_unique<BoxUnit>(n, config_.box_low); }, &SharedUnits::box_low);
+  share("triangle", "triangle_tester", config_.triangle, bool(units.triangle_tester),
+        [&](const char* n) { return std::make_unique<TriangleTester>(n, config_.triangle, options.tester); },
+        &SharedUnits::triangle);
+  share("avoidance", "avoidance_unit", config_.avoidance, bool(units.avoidance_unit),
+        [&](const char* n) {
+          return std::make_unique<AvoidanceUnit>(n, config_.avoidance, options.method.avoidance, avoidance_in_use_);
+        },
+        &SharedUnits::avoidance);
+}
 
 tlm::tlm_initiator_socket<>& Accelerator::memory_socket() {
   if (!memory_socket_)

@@ -187,6 +187,8 @@ class Accelerator final : private AcceleratorChecks, public sc_core::sc_module, 
   nlohmann::json parameters() const override;
 
  private:
+  /// The units groups of cores share (hw.<unit>.share > 1), into shared_units_ and core_shared_.
+  void build_shared_units(const AcceleratorUnits& units, const ReplayOptions& options);
   SC_HAS_PROCESS(Accelerator);
   void start_of_simulation() override;
   void activate();
@@ -213,6 +215,8 @@ class Accelerator final : private AcceleratorChecks, public sc_core::sc_module, 
   bool dispatcher_replaced_ = false;
   std::optional<TechFile> tech_;
   DispatchIf* dispatcher_ = nullptr;
+  std::vector<std::unique_ptr<sc_core::sc_module>> shared_units_;  ///< units groups of cores share (hw.<unit>.share)
+  std::vector<SharedUnits> core_shared_;                           ///< per core: its group's shared units
   sc_core::sc_vector<RayTestCore> cores_;
   std::unique_ptr<IdealMemory> ideal_;
   std::vector<std::unique_ptr<ObjectCaches>> object_caches_;  ///< per core, with memory.objects

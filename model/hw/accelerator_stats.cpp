@@ -34,9 +34,15 @@ void add(UnitCounters& sum, const UnitCounters& c) {
   sum.busy_cycles += c.busy_cycles;
 }
 
-/// The counters of a core's unit: the built-in module's, or what the scheduler counted of its replacement.
-void add_unit(UnitCounters& sum, const PipelineUnit* builtin, const UnitCounters& replaced) {
-  if (builtin) return add(sum, builtin->counters());
+/// The counters of core `core`'s unit of configuration `u`: the built-in
+/// module's (a unit its group shares counted once, at the group's first core),
+/// or what the scheduler counted of its replacement.
+void add_unit(UnitCounters& sum, const PipelineUnit* builtin, const UnitConfig& u, uint32_t core,
+              const UnitCounters& replaced) {
+  if (builtin) {
+    if (core % u.share == 0) add(sum, builtin->counters());
+    return;
+  }
   add(sum, replaced);
   sum.replaced = true;
 }
@@ -53,10 +59,11 @@ HwCounters Accelerator::chip_counters() const {
   c.latency_max = s.latency_max;
   for (const RayTestCore& core : cores_) {
     const CoreCounters& k = core.counters;
-    add_unit(c.box, core.builtin_box(), k.replaced_units[CoreCounters::kBox]);
-    if (const BoxUnit* low = core.box_low_unit()) add(c.box_low, low->counters());
-    add_unit(c.triangle, core.builtin_triangle(), k.replaced_units[CoreCounters::kTriangle]);
-    add_unit(c.avoidance, core.builtin_avoidance(), k.replaced_units[CoreCounters::kAvoidance]);
+    const uint32_t i = core.index();
+    add_unit(c.box, core.builtin_box(), config_.box, i, k.replaced_units[CoreCounters::kBox]);
+    if (const BoxUnit* low = core.box_low_unit(); low && i % config_.box_low.share == 0) add(c.box_low, low->counters());
+    add_unit(c.triangle, core.builtin_triangle(), config_.triangle, i, k.replaced_units[CoreCounters::kTriangle]);
+    add_unit(c.avoidance, core.builtin_avoidance(), config_.avoidance, i, k.replaced_units[CoreCounters::kAvoidance]);
     add(c.controller, k.controller);
     for (int i = 0; i < kRayKindCount; ++i) c.avoidance_ops_by_kind[i] += k.avoidance_ops_by_kind[i];
     c.node_fetches += k.node_fetches;
@@ -87,10 +94,12 @@ StatsSample Accelerator::statistics_sample(uint64_t cycle, bool latencies) const
   if (latencies) s.latency_by_kind = sink.latency_by_kind;
   for (const RayTestCore& core : cores_) {
     const CoreCounters& k = core.counters;
+    const uint32_t i = core.index();
     const PipelineUnit* builtin[3] = {core.builtin_box(), core.builtin_triangle(), core.builtin_avoidance()};
+    const UnitConfig* configs[3] = {&config_.box, &config_.triangle, &config_.avoidance};
     for (int u = 0; u < 3; ++u) {
       UnitCounters c;
-      add_unit(c, builtin[u], k.replaced_units[u]);
+      add_unit(c, builtin[u], *configs[u], i, k.replaced_units[u]);
       s.unit_ops[u] += c.ops;
       s.unit_replaced[u] = s.unit_replaced[u] || c.replaced;
     }

@@ -16,7 +16,7 @@ constexpr uint32_t kMaxCount = 1u << 20;
 
 nlohmann::json triangle_json(const HwConfig& c) {
   nlohmann::json j{{"count", c.triangle.count}, {"latency", c.triangle.latency},
-                   {"issue_interval", c.triangle.issue_interval}};
+                   {"issue_interval", c.triangle.issue_interval}, {"share", c.triangle.share}};
   if (c.triangle_timing.derive) {
     j["derive"] = true;
     j["operators"] = c.triangle_timing.operators;
@@ -33,6 +33,7 @@ void read_unit(Fields& parent, const std::string& key, UnitConfig& u) {
     f.integer("count", u.count, 1, 64);
     f.integer("latency", u.latency, 1, 100000);
     f.integer("issue_interval", u.issue_interval, 1, 100000);
+    f.integer("share", u.share, 1, 4096);
   }
 }
 
@@ -224,6 +225,7 @@ void apply_hw_config(const nlohmann::json& j, const std::string& file, HwConfig&
     fl.integer("count", cfg.box_low.count, 0, 64);
     fl.integer("latency", cfg.box_low.latency, 1, 100000);
     fl.integer("issue_interval", cfg.box_low.issue_interval, 1, 100000);
+    fl.integer("share", cfg.box_low.share, 1, 4096);
   }
   if (const auto* v = f.get("triangle")) {
     // A latency or issue interval given without `derive` fixes the unit's timing
@@ -234,6 +236,7 @@ void apply_hw_config(const nlohmann::json& j, const std::string& file, HwConfig&
     const bool fixed = ft.get("latency") || ft.get("issue_interval");
     ft.integer("latency", cfg.triangle.latency, 1, 100000);
     ft.integer("issue_interval", cfg.triangle.issue_interval, 1, 100000);
+    ft.integer("share", cfg.triangle.share, 1, 4096);
     if (fixed) cfg.triangle_timing.derive = false;
     ft.boolean("derive", cfg.triangle_timing.derive);
     ft.integer("operators", cfg.triangle_timing.operators, 0, 100000);
@@ -282,6 +285,12 @@ void apply_hw_config(const nlohmann::json& j, const std::string& file, HwConfig&
       throw ConfigError(file + ": field 'hw.sim.warmup_cycles': a warm-up by rays (hw.sim.warmup_rays) and by cycles "
                         "at once: set one of them");
   }
+  const std::pair<const char*, const UnitConfig*> shared[] = {
+      {"box", &cfg.box}, {"box_low", &cfg.box_low}, {"triangle", &cfg.triangle}, {"avoidance", &cfg.avoidance}};
+  for (const auto& [key, unit] : shared)
+    if (unit->share > cfg.cores)
+      fail(file, std::string("hw.") + key + ".share",
+           fmt::format("{} cores share one unit, but the accelerator has {} (hw.cores)", unit->share, cfg.cores));
 }
 
 HwConfig for_tester(HwConfig cfg, TesterKind kind) {
@@ -340,7 +349,8 @@ const char* controller_step_name(ControllerConfig::Step k) {
 
 nlohmann::json hw_config_json(const HwConfig& c) {
   const auto unit = [](const UnitConfig& u) {
-    return nlohmann::json{{"count", u.count}, {"latency", u.latency}, {"issue_interval", u.issue_interval}};
+    return nlohmann::json{
+        {"count", u.count}, {"latency", u.latency}, {"issue_interval", u.issue_interval}, {"share", u.share}};
   };
   const auto cache = [](const CacheConfig& k) {
     return nlohmann::json{{"size_bytes", k.size_bytes}, {"ways", k.ways},   {"line_bytes", k.line_bytes},

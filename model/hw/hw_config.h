@@ -15,12 +15,19 @@
 
 namespace vbsim::hw {
 
-/// `count` identical pipelines of one kind per core.
+/// `count` identical pipelines of one kind in each group of `share` cores: a
+/// group's pipelines take the operations of all its cores (share 1, the
+/// default: every core has its own). Cores `g*share .. g*share + share - 1`
+/// form group g; the last group may have fewer cores.
 struct UnitConfig {
-  uint32_t count = 1;           ///< pipelines of this kind per core
+  uint32_t count = 1;           ///< pipelines of this kind per group of `share` cores
   uint32_t latency = 1;         ///< cycles from issue to result
   uint32_t issue_interval = 1;  ///< cycles between two issues into one pipeline
+  uint32_t share = 1;           ///< cores served by one group of `count` pipelines
 };
+
+/// Groups of `u.share` cores among `cores`: the instances of the unit kind.
+inline uint32_t unit_groups(const UnitConfig& u, uint32_t cores) { return (cores + u.share - 1) / u.share; }
 
 /// What the ray source does with a child whose parent is not among the rays
 /// of the parent window before it: stop with an error naming the child's line,

@@ -78,6 +78,7 @@ void strip_unpinned(nlohmann::json& j) {
       hw.erase("root_box_test");
       hw.erase("pop_culling");
       hw.erase("box_low");
+      for (const char* unit : {"box", "triangle", "avoidance"}) hw[unit].erase("share");
       hw.erase("triangle_fetch");
       hw.erase("triangle_fetch_cycles");
       for (const char* f : {"warmup_rays", "warmup_cycles", "interval_cycles"}) hw["sim"].erase(f);

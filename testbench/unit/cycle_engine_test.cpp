@@ -444,3 +444,63 @@ TEST_CASE("a 4-wide node is one 128-byte fetch and one box operation for all its
   CHECK(c.triangle.ops == 3);
   CHECK(c.memory_wait_cycles == 5 * M);
 }
+
+TEST_CASE("a triangle tester shared by two cores takes both cores' tests in one reservation table, by hand",
+          "[cycle][share]") {
+  // A root leaf of three floors; two cores of one slot. Ray 1 is dispatched at
+  // cycle 1 to core 0, ray 2 at cycle 2 to core 1 (least loaded); each meets
+  // all three floors, so each takes three triangle tests, all ready when its
+  // leaf arrives: R1 = 1 + Lb + M and R2 = R1 + 1.
+  const ThreeFloorsLeaf leaf;
+  const uint32_t M = 4, Lb = 2, Lt = 9, interval = 3;
+  HwConfig cfg = one_slot(M, Lb, Lt, 1);
+  cfg.cores = 2;
+  cfg.triangle.issue_interval = interval;
+  cfg.source.dependencies = false;
+  const uint64_t r1 = 1 + Lb + M;
+  SECTION("each core its own tester: the two rays' tests overlap") {
+    const Run run = run_rays({down_from(1, 1.0f), down_from(2, 1.0f)}, leaf.scene, leaf.bvh, ReplayOptions{}, cfg);
+    CHECK(run.rays.at(1).cycle == r1 + 2 * interval + Lt);
+    CHECK(run.rays.at(2).cycle == r1 + 1 + 2 * interval + Lt);
+    CHECK(run.result.counters.triangle.ops == 6);
+  }
+  SECTION("one tester for both cores: ray 2's tests take the issue cycles after ray 1's") {
+    cfg.triangle.share = 2;
+    const Run run = run_rays({down_from(1, 1.0f), down_from(2, 1.0f)}, leaf.scene, leaf.bvh, ReplayOptions{}, cfg);
+    REQUIRE(run.rays.at(2).prim == 0);
+    // Ray 1 holds the pipeline at R1, R1 + 3, R1 + 6; ray 2 (ready at R1 + 1)
+    // issues at R1 + 9, R1 + 12, R1 + 15.
+    CHECK(run.rays.at(1).cycle == r1 + 2 * interval + Lt);
+    CHECK(run.rays.at(2).cycle == r1 + 5 * interval + Lt);
+    CHECK(run.result.counters.triangle.ops == 6);  // counted once, not once per core
+    CHECK(run.result.counters.triangle.wait_cycles == 2 * (interval - 1) + (3 * interval - 1) + 2 * (interval - 1));
+  }
+}
+
+TEST_CASE("throughput with units shared by groups of cores is within 2 percent of the shared units' bound",
+          "[cycle][share]") {
+  auto src = open_trace(std::string(VBSIM_SOURCE_DIR) + "/traces/bunny/paths.jsonl");
+  const SceneAndBvh sb = load_trace_scene(src->header());
+  const std::vector<TraceRay> rays = bench_rays(sb.scene, 24000, 5);
+  HwConfig cfg;
+  cfg.cores = 4;
+  cfg.slots_per_core = 64;
+  cfg.memory.ideal = true;
+  cfg.memory.ideal_latency = 10;
+  cfg.source = {1, 0, 0};
+  cfg.box = {8, 6, 1};  // enough box units that the triangle testers bound the throughput
+  cfg.triangle = {1, 15, 4};
+  cfg.triangle.share = GENERATE(1u, 2u, 4u);  // 4, 2 and 1 testers
+  const Run run = run_rays(rays, sb.scene, sb.bvh, ReplayOptions{}, cfg);
+  const KindStats t = run.result.stats.total();
+  REQUIRE(t.rays == rays.size());
+  const double n = static_cast<double>(t.rays);
+  const double tri_per_ray = t.traversal.triangle_tests / n;
+  const uint32_t testers = unit_groups(cfg.triangle, cfg.cores);
+  const double bound = std::min({1.0 / cfg.source.issue_interval,
+                                 testers * cfg.triangle.count / (cfg.triangle.issue_interval * tri_per_ray)});
+  const double got = n / run.result.counters.cycles;
+  INFO("share " << cfg.triangle.share << " triangle ops/ray " << tri_per_ray << " bound " << bound << " got " << got);
+  CHECK(got <= bound * 1.0000001);
+  CHECK(got >= 0.98 * bound);
+}

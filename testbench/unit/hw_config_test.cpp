@@ -103,6 +103,9 @@ TEST_CASE("bad hw values are errors naming the field", "[hwconfig]") {
       {R"({"shader": {"latency_by_kind": [1]}})", "field 'hw.shader.latency_by_kind'"},
       {R"({"triangle": {"count": 0}})", "field 'hw.triangle.count'"},
       {R"({"avoidance": {"issue_interval": 0}})", "field 'hw.avoidance.issue_interval'"},
+      {R"({"avoidance": {"share": 0}})", "field 'hw.avoidance.share'"},
+      {R"({"cores": 4, "avoidance": {"share": 5}})", "field 'hw.avoidance.share'"},
+      {R"({"cores": 2, "box": {"share": 2}, "triangle": {"share": 3}})", "field 'hw.triangle.share'"},
       {R"({"source": {"speed": 1}})", "field 'hw.source.speed'"},
       {R"({"memory": {"ideal": 1}})", "field 'hw.memory.ideal'"},
       {R"({"memory": {"l1": {"line_bytes": 48}}})", "field 'hw.memory.l1.line_bytes'"},
@@ -218,4 +221,21 @@ TEST_CASE("a replay config's bvh build options are read, checked and echoed", "[
     CHECK_THROWS_WITH(apply_replay_config(nlohmann::json::parse(bad), "cfg.json", o),
                       Catch::StartsWith("cfg.json: field 'bvh."));
   }
+}
+
+TEST_CASE("a unit's sharing: read, written back, and the groups it makes", "[hwconfig][share]") {
+  HwConfig c;
+  apply_hw_config(nlohmann::json::parse(R"({"cores": 10, "avoidance": {"share": 4}, "box_low": {"count": 1, "share": 10}})"),
+                  "cfg.json", c);
+  CHECK(c.avoidance.share == 4);
+  CHECK(unit_groups(c.avoidance, c.cores) == 3);  // cores 0-3, 4-7, 8-9
+  CHECK(unit_groups(c.box_low, c.cores) == 1);
+  CHECK(unit_groups(c.box, c.cores) == 10);
+  const nlohmann::json j = hw_config_json(c);
+  CHECK(j["avoidance"]["share"] == 4);
+  CHECK(j["box"]["share"] == 1);
+  HwConfig back;
+  apply_hw_config(j, "back.json", back);
+  CHECK(back.avoidance.share == 4);
+  CHECK(back.box_low.share == 10);
 }

@@ -13,7 +13,10 @@ PipelineUnit::PipelineUnit(sc_core::sc_module_name name, const UnitConfig& confi
 }
 
 nlohmann::json PipelineUnit::parameters() const {
-  return {{"count", config_.count}, {"latency", config_.latency}, {"issue_interval", config_.issue_interval}};
+  return {{"count", config_.count},
+          {"latency", config_.latency},
+          {"issue_interval", config_.issue_interval},
+          {"share", config_.share}};
 }
 
 BoxUnit::BoxUnit(sc_core::sc_module_name name, const UnitConfig& config)

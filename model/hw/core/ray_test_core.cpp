@@ -4,16 +4,21 @@ namespace vbsim::hw {
 
 namespace {
 
-/// Binds `port` to the built-in unit made by `builtin`, or to the replacement
-/// `factory` makes (kept in `kept`). Returns the built-in unit, or null.
+/// Binds `port` to the replacement `factory` makes (kept in `kept`), to the
+/// built-in unit `shared` its group of cores shares, or to the built-in unit
+/// made by `builtin`. Returns the built-in unit, or null.
 template <class Unit, class If, class Make>
 Unit* bind_unit(sc_core::sc_port<If>& port, const AcceleratorUnits::CoreUnitFactory& factory, const char* name,
                 uint32_t core, const HwConfig& config, const char* interface_name, std::unique_ptr<Unit>& own,
-                std::vector<std::unique_ptr<sc_core::sc_module>>& kept, Make builtin) {
+                std::vector<std::unique_ptr<sc_core::sc_module>>& kept, Unit* shared, Make builtin) {
   if (factory) {
     kept.push_back(factory(name, core, config));
     port.bind(replacement_as<If>(*kept.back(), interface_name));
     return nullptr;
+  }
+  if (shared) {
+    port.bind(*shared);
+    return shared;
   }
   own = builtin(name);
   port.bind(*own);
@@ -24,25 +29,29 @@ Unit* bind_unit(sc_core::sc_port<If>& port, const AcceleratorUnits::CoreUnitFact
 
 RayTestCore::RayTestCore(sc_core::sc_module_name name, uint32_t index, const HwConfig& config,
                          const AcceleratorUnits& units, TesterKind tester, const AvoidanceConfig& avoidance_config,
-                         bool avoidance_in_use, bool with_l1)
+                         bool avoidance_in_use, bool with_l1, const SharedUnits& shared)
     : sc_core::sc_module(name), box("box"), box_low("box_low"), triangle("triangle"), avoidance("avoidance"), memory("memory"),
       read_done_target("read_done_target"), index_(index), first_slot_(index * config.slots_per_core),
       slots_(config.slots_per_core), stack_depth_(config.stack_depth) {
   read_done_target.bind(*this);
   builtin_box_ = bind_unit(box, units.box_unit, "box_unit", index, config, "BoxUnitIf", box_unit_, replacements_,
-                           [&](const char* n) { return std::make_unique<BoxUnit>(n, config.box); });
+                           shared.box, [&](const char* n) { return std::make_unique<BoxUnit>(n, config.box); });
   if (units.box_unit) replaced_box_ = replacements_.back().get();
-  if (config.box_low.count > 0) {
+  if (shared.box_low) {
+    box_low_ = shared.box_low;
+    box_low.bind(*box_low_);
+  } else if (config.box_low.count > 0) {
     box_unit_low_ = std::make_unique<BoxUnit>("box_unit_low", config.box_low);
-    box_low.bind(*box_unit_low_);
+    box_low_ = box_unit_low_.get();
+    box_low.bind(*box_low_);
   }
   builtin_triangle_ = bind_unit(triangle, units.triangle_tester, "triangle_tester", index, config, "TriangleTesterIf",
-                                triangle_tester_, replacements_, [&](const char* n) {
+                                triangle_tester_, replacements_, shared.triangle, [&](const char* n) {
                                   return std::make_unique<TriangleTester>(n, for_tester(config, tester).triangle, tester);
                                 });
   if (units.triangle_tester) replaced_triangle_ = replacements_.back().get();
   builtin_avoidance_ = bind_unit(avoidance, units.avoidance_unit, "avoidance_unit", index, config, "AvoidanceUnitIf",
-                                 avoidance_unit_, replacements_, [&](const char* n) {
+                                 avoidance_unit_, replacements_, shared.avoidance, [&](const char* n) {
                                    return std::make_unique<AvoidanceUnit>(n, config.avoidance, avoidance_config,
                                                                           avoidance_in_use);
                                  });

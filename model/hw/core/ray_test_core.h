@@ -36,6 +36,15 @@
 
 namespace vbsim::hw {
 
+/// Built-in units a group of cores shares (hw.<unit>.share > 1), owned by the
+/// accelerator; null: the core builds its own.
+struct SharedUnits {
+  BoxUnit* box = nullptr;
+  BoxUnit* box_low = nullptr;
+  TriangleTester* triangle = nullptr;
+  AvoidanceUnit* avoidance = nullptr;
+};
+
 class RayTestCore final : public sc_core::sc_module, public ReadDoneIf, public StatProvider {
  public:
   sc_core::sc_port<BoxUnitIf> box;
@@ -47,9 +56,11 @@ class RayTestCore final : public sc_core::sc_module, public ReadDoneIf, public S
   sc_core::sc_export<ReadDoneIf> read_done_target;  ///< where a pending read's answer arrives
 
   /// Core `index` of `config`; its units are built-in unless `units` replaces
-  /// them; `with_l1`: builds its L1 (false: the accelerator binds `memory`).
+  /// them, its own unless `shared` names its group's; `with_l1`: builds its L1
+  /// (false: the accelerator binds `memory`).
   RayTestCore(sc_core::sc_module_name name, uint32_t index, const HwConfig& config, const AcceleratorUnits& units,
-              TesterKind tester, const AvoidanceConfig& avoidance_config, bool avoidance_in_use, bool with_l1);
+              TesterKind tester, const AvoidanceConfig& avoidance_config, bool avoidance_in_use, bool with_l1,
+              const SharedUnits& shared = {});
 
   uint32_t index() const { return index_; }
   uint32_t first_slot() const { return first_slot_; }
@@ -57,7 +68,7 @@ class RayTestCore final : public sc_core::sc_module, public ReadDoneIf, public S
 
   /// The built-in units bound to the ports, or null where a replacement is bound.
   BoxUnit* builtin_box() const { return builtin_box_; }
-  BoxUnit* box_low_unit() const { return box_unit_low_.get(); }  ///< the low-precision pool, or null
+  BoxUnit* box_low_unit() const { return box_low_; }  ///< the low-precision pool, or null
   TriangleTester* builtin_triangle() const { return builtin_triangle_; }
   AvoidanceUnit* builtin_avoidance() const { return builtin_avoidance_; }
   L1Cache* l1() const { return l1_; }  ///< the built-in L1, or null
@@ -81,6 +92,7 @@ class RayTestCore final : public sc_core::sc_module, public ReadDoneIf, public S
   uint32_t index_, first_slot_, slots_, stack_depth_;
   std::vector<std::unique_ptr<sc_core::sc_module>> replacements_;
   BoxUnit* builtin_box_ = nullptr;
+  BoxUnit* box_low_ = nullptr;
   TriangleTester* builtin_triangle_ = nullptr;
   AvoidanceUnit* builtin_avoidance_ = nullptr;
   L1Cache* l1_ = nullptr;

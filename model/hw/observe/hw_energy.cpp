@@ -68,9 +68,10 @@ HwArea hw_area(const TechFile& t, const HwConfig& given, const ReplayOptions& op
   HwArea a;
   a.cores = cfg.cores;
   // A low-precision pool's units are priced as full-precision ones (an upper bound).
-  a.box_units = cfg.cores * (cfg.box.count + cfg.box_low.count);
-  a.triangle_testers = cfg.cores * cfg.triangle.count;
-  a.avoidance_units = opt.method.validity_bit && mo.suspect.total() > 0 ? cfg.cores * cfg.avoidance.count : 0;
+  a.box_units = unit_groups(cfg.box, cfg.cores) * cfg.box.count + unit_groups(cfg.box_low, cfg.cores) * cfg.box_low.count;
+  a.triangle_testers = unit_groups(cfg.triangle, cfg.cores) * cfg.triangle.count;
+  a.avoidance_units =
+      opt.method.validity_bit && mo.suspect.total() > 0 ? unit_groups(cfg.avoidance, cfg.cores) * cfg.avoidance.count : 0;
   a.emission_lanes = mo.emission.total() > 0 ? cfg.source.rays_per_cycle : 0;
   // A box unit tests every child box of a node in one operation: 2, 4 or 8 (bvh.width).
   a.box_unit = t.area_mm2(shared_over(opt.bvh.width * box_test_ops(), cfg.box.issue_interval)) +

@@ -8,10 +8,10 @@ namespace {
 
 double per(double num, double den) { return den > 0 ? num / den : 0.0; }
 
-/// Fraction of the issue slots of all `u` pipelines of all cores that were used.
+/// Fraction of the issue slots of all `u` pipelines of all groups of cores that were used.
 double utilisation(const UnitCounters& c, const UnitConfig& u, const HwConfig& cfg, uint64_t cycles) {
   const double busy = c.busy_cycles ? static_cast<double>(c.busy_cycles) : static_cast<double>(c.ops) * u.issue_interval;
-  return per(busy, static_cast<double>(cycles) * u.count * cfg.cores);
+  return per(busy, static_cast<double>(cycles) * u.count * unit_groups(u, cfg.cores));
 }
 
 /// The utilisation, or null for a replaced unit (its pipelines are its own).

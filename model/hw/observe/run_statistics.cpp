@@ -92,7 +92,7 @@ nlohmann::json RunStatistics::difference_json(const StatsSample& a, const StatsS
     const uint64_t ops = b.unit_ops[i] - a.unit_ops[i];
     // The share of the issue slots of every pipeline of this kind that were used.
     const double busy = per(static_cast<double>(ops) * units[i]->issue_interval,
-                            static_cast<double>(cycles) * units[i]->count * cfg.cores);
+                            static_cast<double>(cycles) * units[i]->count * unit_groups(*units[i], cfg.cores));
     u[kNames[i]] = {{"ops", ops}, {"busy", b.unit_replaced[i] ? nlohmann::json(nullptr) : nlohmann::json(busy)}};
   }
   nlohmann::json j = {{"start", a.cycle},
