@@ -25,6 +25,7 @@ void add_check_command(CLI::App& app);
 void add_capture_command(CLI::App& app);
 void add_reintersect_command(CLI::App& app);
 void add_compare_reference_command(CLI::App& app);
+void add_explore_command(CLI::App& app);
 
 /// The main job: replay of the default trace with validity-bit, printed
 /// summary, then the trade-off table of every method on the same trace.

@@ -67,6 +67,7 @@ int run_command_line(int argc, char** argv) {
   add_capture_command(app);
   add_reintersect_command(app);
   add_compare_reference_command(app);
+  add_explore_command(app);
   try {
     app.parse(argc, argv);
     if (app.get_subcommands().empty()) return run_default_job();
