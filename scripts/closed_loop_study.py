@@ -41,7 +41,8 @@ import provenance  # noqa: E402
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 METHODS = ["none", "tmin", "primid", "offset-normal", "offset-direction", "offset-adaptive",
-           "offset-errbound", "validity-bit", "sign-only", "shading-position-always", "reverse-shadow"]
+           "offset-errbound", "validity-bit", "validity-bit:vb-policy=vote", "sign-only", "shading-position-always",
+           "reverse-shadow"]
 
 # The bunny and Wuson meshes, and one case of each scenario family with a scene.
 DEFAULT_SCENES = ["traces/bunny/bunny.obj", "traces/wuson/WusonOBJ.obj", "layers:layers-sphere-on-plane",

@@ -50,8 +50,12 @@ def front_chart(rows, workload, tech, methods, path, prov):
                     best = r[y]
             ax.plot([r["cycles_per_ray"] for r in front], [r[y] for r in front], "-o", color=c, ms=4, label=method)
     preset = group[0]["preset"] if group and "preset" in group[0] else ""
+    cycles = [r["cycles_per_ray"] for r in group if r["cycles_per_ray"] > 0]
+    wide = cycles and max(cycles) > 5 * min(cycles)  # a log scale keeps the fronts apart from outliers
     for ax, ylabel in zip(axes, ("chip area (mm2)", "energy per ray (pJ: operations, memory, leakage)")):
-        ax.set_xlabel("cycles per ray")
+        ax.set_xlabel("cycles per ray" + (" (log scale)" if wide else ""))
+        if wide:
+            ax.set_xscale("log")
         ax.set_ylabel(ylabel)
         ax.grid(alpha=0.3)
     axes[0].legend(fontsize=7)
@@ -117,7 +121,9 @@ def write_report(out_dir, definition, rows, knobs, prov, command):
         targets = definition["throughput_targets_mrays_per_s"] or ea.default_targets(group)
         image = f"front-{workload}-{tech}.png".replace(" ", "_").replace("/", "_")
         front_chart(rows, workload, tech, methods, os.path.join(out_dir, image), prov)
-        lines += [f"## {workload} ({tech})", "", f"![fronts of {workload}]({image})", "",
+        notes = next((w.get("notes") for w in definition["workloads"] if w["name"] == workload), None)
+        lines += [f"## {workload} ({tech})", ""] + ([notes, ""] if notes else []) + [
+                  f"![fronts of {workload}]({image})", "",
                   "| method | secondary errors per million [95%] | camera errors per million | designs on the front |",
                   "|---|---|---|---|"]
         for m in methods:

@@ -12,7 +12,7 @@ covers, so a figure added to the page must be added here.
 import json
 import os
 
-from findings_sources import ROOT, Command, cell, regex, sweep_rows, table_cell
+from findings_sources import ROOT, STUDY, Command, SourceError, cell, regex, study, study_rows, sweep_rows, table_cell
 
 
 class Figure:
@@ -30,8 +30,11 @@ VOTE = "validity-bit:vb-policy=vote"
 VB_VARIANTS = [VB, VOTE, "validity-bit:vb-guard-bits=2", "validity-bit:vb-eps-mode=fixed:vb-eps=1e-4",
                "validity-bit:vb-eps-mode=fixed:vb-eps=1e-4:vb-policy=vote"]
 OFFSETS = ["offset-normal", "offset-direction", "offset-adaptive", "offset-errbound"]
-# Methods whose emission-time arithmetic is short enough not to bind the ray source.
-CHEAP_AT_EMISSION = ["tmin", "primid"] + OFFSETS[:2] + VB_VARIANTS + ["sign-only"]
+# The methods that act on every secondary ray (with the presets' shader cores none binds the ray source).
+CHEAP_AT_EMISSION = ["tmin", "primid"] + OFFSETS + VB_VARIANTS + ["sign-only"]
+# The methods of architecture.md's methods table.
+ARCH_METHODS = ["tmin", "primid", "offset-normal", "offset-adaptive", "offset-errbound", "validity-bit",
+                "validity-bit:vb-policy=vote", "sign-only"]
 
 
 def acc(method, family):  # secondary errors per million, three-half-plane tester
@@ -94,6 +97,83 @@ def pbrt_row(method, tester, column, size="At pbrt's size", part=0):
     nums = [float(x.replace(",", "")) for x in
             __import__("re").findall(r"[0-9][0-9,]*(?:\.[0-9]+)?", text)]
     return nums[part]
+
+
+# The validity-bit study (docs/results/validity-bit-study/: `vbsim explore` rows).
+STUDY_REPORT = os.path.join(STUDY, "report.md")
+WUSON = "wuson-239k-pathtracer"
+VB_ALL, VB_VOTE = "validity-bit (all)", "validity-bit (vote)"
+STUDY_OFFSETS = ["offset-adaptive", "offset-errbound", "offset-errbound (pbrt-watertight)"]
+STUDY_SOFTWARE = ["tmin"] + STUDY_OFFSETS
+STUDY_METHODS = ["primid"] + STUDY_SOFTWARE + [VB_ALL, VB_VOTE]
+BARE = dict(cores=4, shader__cores=0, source__emission_width=1)  # the emission unit alone, one lane wide
+SHADED = dict(cores=4, shader__cores=4)  # the emission arithmetic on the shader cores
+PRESET_LIKE = dict(SHADED, source__emission_width=8, avoidance__share=1, avoidance__issue_interval=1)
+# On the preset-like design (4 cores, 4 shader cores, an emission unit 8 wide): one avoidance
+# pipeline per core; issuing every 8th cycle; shared by 4 cores; both.
+AVOID = [dict(cores=4, shader__cores=4, source__emission_width=8, avoidance__share=s, avoidance__issue_interval=i) for s, i in ((1, 1), (1, 8), (4, 1), (4, 8))]
+
+
+def study_values(knob):
+    """The values the study gives KNOB, ascending."""
+    return tuple(sorted({float(r[knob]) for r in study_rows()}))
+
+
+def worst_software_gap(workload):
+    """The largest |cycles / primid's - 1| of the software methods on the shader cores, percent."""
+    primid = study(workload, "primid", "cycles_per_ray", cores=4)
+    return max(abs(pct(study(workload, m, "cycles_per_ray", **SHADED) / primid - 1)) for m in STUDY_SOFTWARE)
+
+
+def sensitivity_cell(method, knob):
+    """KNOB's main effect on METHOD's cycles per ray, percent, as the study's report.md tabulates it."""
+    import explore_analysis
+    rows = [{**r, "cycles_per_ray": float(r["cycles_per_ray"])} for r in study_rows()]
+    knobs = [k for k in rows[0] if k in ("cores", "shader.cores", "source.emission_width", "avoidance.share",
+                                           "avoidance.issue_interval")]
+    return pct(explore_analysis.sensitivity(rows, knobs, "cycles_per_ray")[method][knob])
+
+
+def study_numeric(workload):
+    return [{**r, **{k: float(r[k]) for k in ("area_mm2", "mrays_per_s", "energy_pj_per_ray")}}
+            for r in study_rows() if r["workload"] == workload]
+
+
+def iso_area_span(workload):
+    """The default budgets and, at each, the slowest and fastest method's best Mrays/s."""
+    import explore_analysis
+    rows = study_numeric(workload)
+    out = []
+    for entry in explore_analysis.iso_area(rows, explore_analysis.default_budgets(rows)):
+        speeds = [r["mrays_per_s"] for r in entry["best"].values()]
+        out.append((entry["budget_mm2"], min(speeds), max(speeds)))
+    (b1, lo1, hi1), (b2, lo2, hi2) = out
+    return (b1, lo1, hi1, lo2, hi2, b2)
+
+
+def iso_throughput_area_spread(workload):
+    """The largest area spread between the methods' smallest designs at the default
+    targets, pbrt's tester apart."""
+    import explore_analysis
+    rows = study_numeric(workload)
+    spreads = []
+    for entry in explore_analysis.iso_throughput(rows, explore_analysis.default_targets(rows)):
+        areas = [r["area_mm2"] for m, r in entry["smallest"].items() if m != "offset-errbound (pbrt-watertight)"]
+        spreads.append(max(areas) - min(areas))
+    return max(spreads)
+
+
+def study_errors(workload, method, interval=False):
+    """Secondary errors per million (with the 95% interval's ends), the same in every design."""
+    figures = ("errors_per_million", "ci95_low", "ci95_high") if interval else ("errors_per_million",)
+    return tuple(study(workload, method, f) for f in figures)
+
+
+def same(*values):
+    """The one value several figures share (a SourceError when they differ)."""
+    if len(set(values)) != 1:
+        raise SourceError(f"expected equal figures, got {values}")
+    return values[0]
 
 
 def pct(x):
@@ -362,34 +442,21 @@ def FIGURES(vbsim):
                lambda: (bench_200k(v)["hw"]["energy"]["per_ray_pj"] / 1000, bench_200k(v)["rays"],
                         bench_200k(v)["hw"]["energy"]["mrays_per_j"]), full=True),
         # Cycles.
-        Figure("`offset-direction`, every validity-bit variant and `sign-only` cost {} to {} cycles per ray, `none` {} only",
+        Figure("`sign-only` cost {} to {} cycles per ray, `none` {} only",
                lambda: (min(cycles(m) for m in CHEAP_AT_EMISSION),
                         max(cycles(m) for m in CHEAP_AT_EMISSION),
                         cycles("none"))),
-        Figure("so `offset-adaptive` costs {} and `offset-errbound` {} cycles per ray",
-               lambda: (cycles("offset-adaptive"), cycles("offset-errbound"))),
-        NotAFigure("(its 128 operations hold the lane 20 cycles a child: ray-source bound)",
-                   "docs/methods.md's operation count and the small preset's emission unit, pinned by "
-                   "testbench/system/emission_unit_test.cpp"),
-        NotAFigure("an emission unit 8 wide and 4 deep", "the small preset's definition"),
-        NotAFigure("(a unit 16 wide)", "the large preset's definition"),
         NotAFigure("at the 33 cycles its arithmetic gives", "docs/hw-model.md's derivation, pinned by "
                    "testbench/unit/tester_timing_test.cpp"),
         Figure("which act on shadow rays only, {} to {}",
                lambda: (min(cycles(m) for m in ["shading-position", "shading-position-always", "reverse-shadow"]),
                         max(cycles(m) for m in ["shading-position", "shading-position-always", "reverse-shadow"]))),
-        Figure("cost more cycles per ray ({} to {}) than `primid` and the validity bit ({} to {})",
-               lambda: (min(arch_methods(m, "cycles/ray: large preset") for m in ["tmin"] + OFFSETS[:1] + OFFSETS[2:]),
-                        max(arch_methods(m, "cycles/ray: large preset") for m in ["tmin"] + OFFSETS[:1] + OFFSETS[2:]),
-                        min(arch_methods(m, "cycles/ray: large preset") for m in
-                            ["primid", VB, VOTE, "validity-bit:vb-eps-mode=fixed:vb-eps=1e-4", "sign-only"]),
-                        max(arch_methods(m, "cycles/ray: large preset") for m in
-                            ["primid", VB, VOTE, "validity-bit:vb-eps-mode=fixed:vb-eps=1e-4", "sign-only"]))),
-        Figure("those costs {} to {} cycles per `paths` ray",
-               lambda: (min(arch_methods(m, "cycles/ray: 1 core x 1 slot") for m in
-                            ["tmin", "primid", "offset-normal", "offset-adaptive", "offset-errbound", VB, VOTE, "sign-only"]),
-                        max(arch_methods(m, "cycles/ray: 1 core x 1 slot") for m in
-                            ["tmin", "primid", "offset-normal", "offset-adaptive", "offset-errbound", VB, VOTE, "sign-only"]))),
+        Figure("On the `large` preset the same methods cost {} to {} cycles per ray",
+               lambda: (min(arch_methods(m, "cycles/ray: large preset") for m in ARCH_METHODS),
+                        max(arch_methods(m, "cycles/ray: large preset") for m in ARCH_METHODS))),
+        Figure("and on one core with one slot {} to {}",
+               lambda: (min(arch_methods(m, "cycles/ray: 1 core x 1 slot") for m in ARCH_METHODS),
+                        max(arch_methods(m, "cycles/ray: 1 core x 1 slot") for m in ARCH_METHODS))),
         # Child rays that wait for their parents.
         NotAFigure("(`shader.latency_cycles`, 200 by default;", "a configuration default (docs/hw-model.md)"),
         NotAFigure("(4 cores x 32 slots)", "the small preset's definition"),
@@ -471,11 +538,72 @@ def FIGURES(vbsim):
         Figure("`offset-errbound` has {} per million with the three-half-plane tester (pbrt's point is not the trace's point) and {} on the Ray Tracing Gems triangles",
                lambda: (rerun_paths("offset-errbound", "errors", v), acc("offset-errbound", "random-triangles-rtg")),
                full=True),
-        Figure("`offset-direction`, every validity-bit variant and `sign-only` cost {} to {} cycles per ray, `none` {} only",
+        Figure("`sign-only` cost {} to {} cycles per ray, `none` {} only",
                lambda: (min(rerun_paths(m, "cycles", v) for m in CHEAP_AT_EMISSION),
                         max(rerun_paths(m, "cycles", v) for m in CHEAP_AT_EMISSION),
                         rerun_paths("none", "cycles", v)), full=True),
         Figure("overstate a path-tracing machine by up to {}% on long traces",
                lambda: max(loss(preset(p, SWEEP, m, "on", "rays/cycle"), preset(p, SWEEP, m, "off", "rays/cycle"))
                            for p in ("small", "large") for m in ("hierarchy", "ideal"))),
+        # Does the validity bit pay for itself? (docs/results/validity-bit-study/, vbsim explore)
+        NotAFigure("(`results/validity-bit-study/`: `report.md`", "a file name"),
+        Figure("Wuson subdivided to {} triangles ({} rays, {} of them secondary",
+               lambda: (regex(STUDY_REPORT, r"over Wuson subdivided to ([0-9,]+) triangles"),
+                        study(WUSON, "primid", "rays", cores=4), study(WUSON, "primid", "secondary_scored", cores=4))),
+        NotAFigure("the bunny 2^20 away", "the far-instance scenario's k (2^20)"),
+        NotAFigure("seven methods", "a count of names"),
+        NotAFigure("secondary-ray errors per million with 95% intervals", "the intervals' confidence"),
+        NotAFigure("2^20 away every method fails", "the far-instance scenario's k (2^20)"),
+        NotAFigure("2^20 away, on the shader cores", "the far-instance scenario's k (2^20)"),
+        Figure("{} designs of the `small` preset ({} or {} cores; {} or {} shader cores; an emission unit {} or {} operations wide; one avoidance pipeline per core or one shared by {} cores;",
+               lambda: (len({r["design"] for r in study_rows()}),) + study_values("cores") + study_values("shader.cores")
+               + study_values("source.emission_width") + study_values("avoidance.share")[1:]),
+        NotAFigure("priced with the 45 nm technology file", "the technology file's node"),
+        Figure("`offset-errbound` costs {} cycles per ray on the Wuson capture and `tmin` {}, against {} for `primid`; on the shader cores they cost {} and {}",
+               lambda: (study(WUSON, "offset-errbound", "cycles_per_ray", **BARE), study(WUSON, "tmin", "cycles_per_ray", **BARE),
+                        study(WUSON, "primid", "cycles_per_ray", cores=4),
+                        study(WUSON, "offset-errbound", "cycles_per_ray", **SHADED),
+                        study(WUSON, "tmin", "cycles_per_ray", **SHADED))),
+        Figure("every software method is within {}% of `primid` on the capture and {}% on the frame",
+               lambda: (worst_software_gap(WUSON), worst_software_gap("bunny-frame"))),
+        Figure("the shader cores move `offset-errbound`'s cycles by {}% of their mean and the number of cores moves the validity bit's by {}%",
+               lambda: (sensitivity_cell("offset-errbound", "shader.cores"), sensitivity_cell("validity-bit (all)", "cores"))),
+        Figure("makes the chip {} mm² against `primid`'s {}; issuing every 8th cycle, {}; one such pipeline shared by four cores, {}, all at the same cycles on the capture ({}, {}, {})",
+               lambda: (study(WUSON, VB_ALL, "area_mm2", **AVOID[0]), study(WUSON, "primid", "area_mm2", cores=4),
+                        study(WUSON, VB_ALL, "area_mm2", **AVOID[1]), study(WUSON, VB_ALL, "area_mm2", **AVOID[3]),
+                        study(WUSON, VB_ALL, "cycles_per_ray", **AVOID[0]), study(WUSON, VB_ALL, "cycles_per_ray", **AVOID[1]),
+                        study(WUSON, VB_ALL, "cycles_per_ray", **AVOID[3]))),
+        Figure("the shared slow unit doubles the cycles ({} to {}), while the issue interval alone ({}) or the sharing alone ({}) keeps them",
+               lambda: tuple(study("nested-spheres", VB_ALL, "cycles_per_ray", **AVOID[i]) for i in (0, 3, 1, 2))),
+        Figure("Within {} mm² (the smallest area at which every method has a design) every method's fastest design on the capture runs {} to {} Mrays/s, and {} to {} within {} mm²",
+               lambda: iso_area_span(WUSON)),
+        Figure("the iso-throughput tables pick designs within {} mm² of each other, but for pbrt's tester, which costs {} mm² more than the three-half-plane tester",
+               lambda: (iso_throughput_area_spread(WUSON),
+                        study(WUSON, "offset-errbound (pbrt-watertight)", "area_mm2", **PRESET_LIKE)
+                        - study(WUSON, "offset-errbound", "area_mm2", **PRESET_LIKE))),
+        Figure("on the capture `vote` {} [{}, {}], `primid` {} [{}, {}], `tmin` {}, `offset-adaptive` {}, `offset-errbound` {} with the three-half-plane tester and {} [{}, {}] with pbrt's, policy `all` {} [{}, {}]",
+               lambda: study_errors(WUSON, VB_VOTE, True) + study_errors(WUSON, "primid", True)
+               + study_errors(WUSON, "tmin") + study_errors(WUSON, "offset-adaptive") + study_errors(WUSON, "offset-errbound")
+               + study_errors(WUSON, "offset-errbound (pbrt-watertight)", True) + study_errors(WUSON, VB_ALL, True)),
+        Figure("on the closed-loop frame `primid`, `offset-errbound` (both testers) and `vote` {} [{}, {}], `tmin` {}, `offset-adaptive` {}, `all` {}",
+               lambda: same(*(study_errors("bunny-frame", m, True) for m in
+                              ("primid", "offset-errbound", "offset-errbound (pbrt-watertight)", VB_VOTE)))
+               + study_errors("bunny-frame", "tmin") + study_errors("bunny-frame", "offset-adaptive")
+               + study_errors("bunny-frame", VB_ALL)),
+        Figure("on the nested spheres every method {} but `tmin` ({}: it skips the inner layer)",
+               lambda: (max(study_errors("nested-spheres", m)[0] for m in STUDY_METHODS if m != "tmin"),
+                        study_errors("nested-spheres", "tmin")[0])),
+        Figure("every method fails, the validity bit least (`all` {}, `primid` {}, the offsets {} to {})",
+               lambda: (study_errors("far-instance", VB_ALL)[0], study_errors("far-instance", "primid")[0],
+                        min(study_errors("far-instance", m)[0] for m in STUDY_OFFSETS),
+                        max(study_errors("far-instance", m)[0] for m in STUDY_OFFSETS))),
+        Figure("it costs {} mm² ({}%) with a slow avoidance pipeline per core",
+               lambda: (study(WUSON, VB_ALL, "area_mm2", **AVOID[1]) - study(WUSON, "primid", "area_mm2", cores=4),
+                        pct(study(WUSON, VB_ALL, "area_mm2", **AVOID[1]) / study(WUSON, "primid", "area_mm2", cores=4) - 1))),
+        Figure("`offset-errbound` with pbrt's tester is the most accurate method on the capture at {} mm² more",
+               lambda: study(WUSON, "offset-errbound (pbrt-watertight)", "area_mm2", **PRESET_LIKE)
+               - study(WUSON, "offset-errbound", "area_mm2", **PRESET_LIKE)),
+        Figure("`offset-adaptive` runs at {} cycles per ray against `primid`'s {}",
+               lambda: (study("far-instance", "offset-adaptive", "cycles_per_ray", **SHADED),
+                        study("far-instance", "primid", "cycles_per_ray", cores=4))),
     ]

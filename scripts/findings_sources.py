@@ -127,3 +127,25 @@ class Command:
 
     def describe(self):
         return "vbsim " + " ".join(self.args)
+
+
+STUDY = "validity-bit-study"
+
+
+def study_rows():
+    """The rows of docs/results/validity-bit-study/points.csv (`vbsim explore`)."""
+    lines = [l for l in _read(os.path.join(STUDY, "points.csv")).splitlines() if not l.startswith("#")]
+    return list(csv.DictReader(io.StringIO("\n".join(lines))))
+
+
+def study(workload, method, column, **knobs):
+    """COLUMN of the study's row of WORKLOAD and METHOD whose knobs have the given values
+    (knob names with '.' written as '__': shader__cores=4); unnamed knobs must not matter,
+    so every matching row must agree."""
+    want = {k.replace("__", "."): str(v) for k, v in knobs.items()}
+    found = {r[column] for r in study_rows() if r["workload"] == workload and r["method"] == method
+             and all(r[k] == v for k, v in want.items())}
+    where = f"docs/results/{STUDY}/points.csv {workload}/{method}/{want}/{column}"
+    if len(found) != 1:
+        raise SourceError(f"{where}: {len(found)} different values ({sorted(found)[:4]})")
+    return float(found.pop())

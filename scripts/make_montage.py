@@ -41,7 +41,7 @@ import provenance  # noqa: E402
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 METHODS = ["none", "tmin", "primid", "offset-normal", "offset-direction", "offset-adaptive",
-           "offset-errbound", "validity-bit", "sign-only", "shading-position",
+           "offset-errbound", "validity-bit", "validity-bit:vb-policy=vote", "sign-only", "shading-position",
            "shading-position-always", "reverse-shadow"]
 
 DEFAULT_SCENES = ["terminator:terminator-s8", "crevice:crevice-5deg+inside", "far-instance"]
@@ -162,7 +162,7 @@ def montage(rows, methods, out):
             top, bottom = axes[2 * r][c], axes[2 * r + 1][c]
             top.imshow(img, interpolation="nearest")
             bottom.imshow(err, interpolation="nearest")
-            top.set_title(methods[c], fontsize=8)
+            top.set_title(methods[c].replace("validity-bit:vb-policy=vote", "validity-bit (vote)"), fontsize=8)
             bottom.set_title(f"acne {pixels['acne']}  leak {pixels['leak']}", fontsize=7)
             for ax in (top, bottom):
                 ax.set_xticks([])

@@ -21,7 +21,9 @@
 #     (scripts/make_montage.py); closed-loop.md and closed-loop*.png: every
 #     method's frame on the accelerator, closed loop against replay of the
 #     reference renderer's rays (scripts/closed_loop_study.py);
-#  7. checks every figure docs/findings.md quotes against them
+#  7. the validity-bit study (scripts/validity_bit_study.sh, vbsim explore):
+#     docs/results/validity-bit-study/;
+#  8. checks every figure docs/findings.md quotes against them
 #     (scripts/check_findings.py, full mode): exits 1 when one no longer matches.
 #
 #   scripts/make_results.sh [--rays N] [--seed S] [--backend slurm [--partition P]
@@ -124,6 +126,9 @@ mkdir -p "$out/captured/pathtracer"
 # The timing cross-validation against rtcore-systemc: only where its source is given
 # (VBSIM_RTCORE_SRC); skipped with a message otherwise, leaving the page as it was.
 /usr/bin/python3 scripts/rtcore_crossval.py --vbsim "$vbsim"
+# The validity-bit study: every method at equal area and equal throughput on a captured
+# path tracer over 238,848 triangles and three other workloads (vbsim explore).
+bash scripts/validity_bit_study.sh ${backend[@]+"${backend[@]}"}
 echo "make_results.sh: every result in docs/results/ regenerated" >&2
 # Every figure docs/findings.md quotes against the regenerated results and its own
 # reruns (scripts/check_findings.py): a figure that moved fails here, and the page
