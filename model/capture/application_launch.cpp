@@ -19,8 +19,12 @@ namespace vbsim::capture {
 namespace {
 
 volatile sig_atomic_t g_child = 0;
-/// SIGTERM sent to this process alone is passed on to the application.
+volatile sig_atomic_t g_interrupted = 0;
+/// SIGINT: noted (Ctrl-C reaches the application through the process group).
+extern "C" void note_interrupt(int sig) { g_interrupted = sig; }
+/// SIGTERM: noted and passed on to the application (sent to this process alone, it would not reach it).
 extern "C" void forward_signal(int sig) {
+  g_interrupted = sig;
   if (g_child > 0) ::kill(static_cast<pid_t>(g_child), sig);
 }
 
@@ -55,8 +59,30 @@ LaunchResult run_under_shim(const std::vector<std::string>& command, const std::
   argv.push_back(nullptr);
   int ready[2];  // closed on exec; carries errno when exec fails
   if (::pipe2(ready, O_CLOEXEC) != 0) throw std::runtime_error(fmt::format("pipe: {}", std::strerror(errno)));
+  // From before the fork until the application has ended, Ctrl-C (sent to the
+  // whole process group) and SIGTERM (passed on) are its to handle; this
+  // process notes them and waits for its end. (The child's exec resets the
+  // handlers to their defaults.)
+  g_child = 0;
+  g_interrupted = 0;
+  struct sigaction note {}, forward {}, old_int {}, old_term {};
+  note.sa_handler = note_interrupt;
+  forward.sa_handler = forward_signal;
+  ::sigaction(SIGINT, &note, &old_int);
+  ::sigaction(SIGTERM, &forward, &old_term);
+  auto restore_handlers = [&] {
+    ::sigaction(SIGINT, &old_int, nullptr);
+    ::sigaction(SIGTERM, &old_term, nullptr);
+    g_child = 0;
+  };
   const pid_t child = ::fork();
-  if (child < 0) throw std::runtime_error(fmt::format("fork: {}", std::strerror(errno)));
+  if (child < 0) {
+    const int err = errno;
+    restore_handlers();
+    ::close(ready[0]);
+    ::close(ready[1]);
+    throw std::runtime_error(fmt::format("fork: {}", std::strerror(err)));
+  }
   if (child == 0) {
     ::close(ready[0]);
     ::setenv("LD_PRELOAD", preload.c_str(), 1);
@@ -67,27 +93,22 @@ LaunchResult run_under_shim(const std::vector<std::string>& command, const std::
     (void)!::write(ready[1], &err, sizeof err);
     ::_exit(127);
   }
+  g_child = child;
   ::close(ready[1]);
   int exec_errno = 0;
-  const bool exec_failed = ::read(ready[0], &exec_errno, sizeof exec_errno) == sizeof exec_errno;
+  ssize_t got;
+  do got = ::read(ready[0], &exec_errno, sizeof exec_errno);
+  while (got < 0 && errno == EINTR);
+  const bool exec_failed = got == sizeof exec_errno;
   ::close(ready[0]);
-  // While the application runs, Ctrl-C (sent to the whole process group) and
-  // SIGTERM (passed on) are its to handle; this process waits for its end.
-  g_child = child;
-  struct sigaction ignore {}, forward {}, old_int {}, old_term {};
-  ignore.sa_handler = SIG_IGN;
-  forward.sa_handler = forward_signal;
-  ::sigaction(SIGINT, &ignore, &old_int);
-  ::sigaction(SIGTERM, &forward, &old_term);
   int status = 0;
   pid_t done;
   do done = ::waitpid(child, &status, 0);
   while (done < 0 && errno == EINTR);
-  ::sigaction(SIGINT, &old_int, nullptr);
-  ::sigaction(SIGTERM, &old_term, nullptr);
-  g_child = 0;
+  restore_handlers();
   if (exec_failed) throw std::runtime_error(fmt::format("cannot run {}: {}", command[0], std::strerror(exec_errno)));
   LaunchResult r;
+  r.interrupted = g_interrupted;
   if (WIFEXITED(status)) r.exit_code = WEXITSTATUS(status);
   if (WIFSIGNALED(status)) r.signal = WTERMSIG(status);
   return r;

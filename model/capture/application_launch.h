@@ -12,13 +12,18 @@ namespace vbsim::capture {
 struct LaunchResult {
   int exit_code = -1;  ///< the exit status when it exited, else -1
   int signal = 0;      ///< the signal that ended it, else 0
+  /// SIGINT or SIGTERM that reached this process while the application ran
+  /// (Ctrl-C or a SIGTERM to the process group, or to this process alone), else 0.
+  int interrupted = 0;
   bool exited_normally() const { return signal == 0 && exit_code == 0; }
   std::string describe() const;  ///< "exited with status 3", "was killed by signal 11 (...)"
 };
 
 /// Runs `command` (looked up on PATH like a shell would) and waits for it.
-/// SIGINT and SIGTERM reach the application (same process group) while this
-/// process waits. Throws std::runtime_error when it cannot be started.
+/// While this process waits, SIGINT and SIGTERM are the application's to
+/// handle: Ctrl-C reaches it through the process group, a SIGTERM sent to this
+/// process is passed on; either is noted in `interrupted`. Throws
+/// std::runtime_error when it cannot be started.
 LaunchResult run_under_shim(const std::vector<std::string>& command, const std::string& shim_path,
                             const std::string& raw_dir);
 

@@ -2,7 +2,6 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <stdexcept>
 
@@ -13,6 +12,7 @@
 #include "capture/incomplete_rays.h"
 #include "capture/raw_capture_files.h"
 #include "datapath/hit_point.h"
+#include "io/atomic_output_file.h"
 #include "scene/ply_scene_writer.h"
 #include "trace/incomplete_reasons.h"
 #include "trace/trace_file.h"
@@ -40,37 +40,44 @@ TraceRay base_ray(const RawRay& r) {
 }
 
 struct Tally {
-  std::map<long, int64_t> rays_by_process;
-  std::map<std::pair<long, SceneKey>, int64_t> rays_by_scene;
-  /// Processes that ran with a shared libembree3 loaded (pid -> "N scenes, M commits").
-  std::map<long, std::string> embree_processes;
+  std::map<ProcessImage, int64_t> rays_by_process;
+  std::map<std::pair<ProcessImage, SceneKey>, int64_t> rays_by_scene;
+  /// Process images that ran with a shared libembree3 loaded (-> "N scenes, M commits").
+  std::map<ProcessImage, std::string> embree_processes;
 };
 
-/// The processes that traced rays, checked to have exited normally, and how many rays each traced where.
-Tally tally(const std::map<long, ProcessFiles>& processes) {
+/// "process 123" for a process's first image, "process 123 (exec'd program 2)" for a later one.
+std::string describe_image(const ProcessImage& id) {
+  return id.image == 0 ? fmt::format("process {}", id.pid)
+                       : fmt::format("process {} (the program it exec'd as image {})", id.pid, id.image);
+}
+
+/// The process images that traced rays, checked to have finished, and how many rays each traced where.
+Tally tally(const std::map<ProcessImage, ProcessFiles>& processes) {
   Tally t;
-  for (const auto& [pid, p] : processes) {
+  for (const auto& [id, p] : processes) {
     if (p.ray_files.empty()) {
       if (p.summary.empty()) continue;
       const auto values = read_process_summary(p.summary);
       auto value = [&](const char* k) { return values.count(k) ? values.at(k) : 0; };
       if (value("embree_loaded") != 0)
-        t.embree_processes[pid] = fmt::format("{} scene{}, {} commit{}", value("scenes"),
-                                              value("scenes") == 1 ? "" : "s", value("commits"),
-                                              value("commits") == 1 ? "" : "s");
+        t.embree_processes[id] = fmt::format("{} scene{}, {} commit{}", value("scenes"),
+                                             value("scenes") == 1 ? "" : "s", value("commits"),
+                                             value("commits") == 1 ? "" : "s");
       continue;
     }
-    if (p.summary.empty())
+    const auto values = p.summary.empty() ? std::map<std::string, uint64_t>{} : read_process_summary(p.summary);
+    if (!values.count("complete"))
       throw std::runtime_error(fmt::format(
-          "process {} traced rays but did not exit normally (no process-{}.txt): the capture is incomplete", pid, pid));
-    const auto values = read_process_summary(p.summary);
+          "{} traced rays but did not exit normally (no complete process-{}.txt): the capture is incomplete",
+          describe_image(id), id.name()));
     if (values.count("write_failed") && values.at("write_failed") != 0)
-      throw std::runtime_error(fmt::format("process {}: the capture shim could not write all its files", pid));
+      throw std::runtime_error(fmt::format("{}: the capture shim could not write all its files", describe_image(id)));
     for (const auto& [k, path] : p.ray_files) {
       const MappedRays rays(path);
       for (std::size_t i = 0; i < rays.size(); ++i) {
-        ++t.rays_by_process[pid];
-        ++t.rays_by_scene[{pid, {rays[i].scene, rays[i].commit}}];
+        ++t.rays_by_process[id];
+        ++t.rays_by_scene[{id, {rays[i].scene, rays[i].commit}}];
       }
     }
   }
@@ -109,12 +116,6 @@ void set_reference(TraceRay& tr, const RawRay& r, int64_t triangle) {
   }
 }
 
-void rename_into_place(const fs::path& from, const fs::path& to) {
-  std::error_code ec;
-  fs::rename(from, to, ec);
-  if (ec) throw std::runtime_error(fmt::format("{}: cannot rename to {}: {}", from.string(), to.string(), ec.message()));
-}
-
 }  // namespace
 
 MergeResult merge_capture(const std::string& raw_dir, const std::string& out_dir, const MergeOptions& opt) {
@@ -124,7 +125,7 @@ MergeResult merge_capture(const std::string& raw_dir, const std::string& out_dir
     if (!tally_.embree_processes.empty()) {
       std::string which;
       for (const auto& [p, what] : tally_.embree_processes)
-        which += fmt::format("{}process {} ({})", which.empty() ? "" : ", ", p, what);
+        which += fmt::format("{}{} ({})", which.empty() ? "" : ", ", describe_image(p), what);
       throw std::runtime_error(fmt::format(
           "no Embree ray queries were captured: the application ran with a shared libembree3 ({}) but called no "
           "rtcIntersect or rtcOccluded function, so there are no rays to trace (it may build BVHs or run point "
@@ -138,11 +139,12 @@ MergeResult merge_capture(const std::string& raw_dir, const std::string& out_dir
   auto best = tally_.rays_by_scene.begin();
   for (auto it = tally_.rays_by_scene.begin(); it != tally_.rays_by_scene.end(); ++it)
     if (it->second > best->second) best = it;
-  const long pid = best->first.first;
+  const ProcessImage traced = best->first.first;
   const SceneKey key = best->first.second;
-  const ProcessFiles& files = processes.at(pid);
+  const ProcessFiles& files = processes.at(traced);
   if (key.second == 0 || !files.scenes.count(key))
-    throw std::runtime_error(fmt::format("process {} traced rays against scene {} before committing it", pid, key.first));
+    throw std::runtime_error(
+        fmt::format("{} traced rays against scene {} before committing it", describe_image(traced), key.first));
   const CapturedScene scene = CapturedScene::read(files.scenes.at(key), [&files](uint32_t s, uint32_t c) {
     const auto it = files.scenes.find({s, c});
     return it == files.scenes.end() ? std::string() : it->second;
@@ -189,15 +191,22 @@ MergeResult merge_capture(const std::string& raw_dir, const std::string& out_dir
   }
   sort_trees(threads, trees);
 
-  // Outputs, under temporary names until everything is written.
+  // Outputs, under temporary names of this run's own (AtomicOutputFile:
+  // NAME.partial-PID-N) until everything is written; then scene, hits, trace
+  // and capture.json take their names, in that order.
   fs::create_directories(out_dir);
   const fs::path dir(out_dir);
   const std::string ext = opt.binary ? ".vbt" : ".jsonl";
-  const fs::path trace_path = dir / ("trace" + ext), trace_tmp = dir / ("trace.partial" + ext);
-  const fs::path scene_path = dir / "scene.ply", scene_tmp = dir / "scene.partial.ply";
-  const fs::path hits_path = dir / "embree_hits.jsonl", hits_tmp = dir / "embree_hits.partial.jsonl";
-  write_ply_scene(scene_tmp.string(), scene.triangles(), {},
-                  opt.provenance.empty() ? "" : "vbsim-provenance " + opt.provenance);
+  const fs::path trace_path = dir / ("trace" + ext);
+  const fs::path scene_path = dir / "scene.ply";
+  const fs::path hits_path = dir / "embree_hits.jsonl";
+  AtomicOutputFile scene_file(scene_path.string(), true);
+  {
+    const std::string bytes = ply_scene_bytes(scene_path.string(), scene.triangles(), {},
+                                              opt.provenance.empty() ? "" : "vbsim-provenance " + opt.provenance);
+    scene_file.stream().write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    scene_file.check();
+  }
   TraceHeader header;
   header.scene = "scene.ply";
   header.scene_path = scene_path.string();
@@ -209,9 +218,9 @@ MergeResult merge_capture(const std::string& raw_dir, const std::string& out_dir
       threads.size(), threads.size() == 1 ? "" : "s",
       opt.strip_offsets ? "children start at their parent's hit point with tmin 0, the application's offsets removed"
                         : "origins, tmin and tmax as the application passed them");
-  std::unique_ptr<TraceSink> sink = create_trace_writer(trace_tmp.string(), header);
-  std::ofstream hits(hits_tmp, std::ios::binary);
-  if (!hits) throw std::runtime_error(fmt::format("{}: cannot create", hits_tmp.string()));
+  std::unique_ptr<TraceSink> sink = create_trace_writer(trace_path.string(), header);
+  AtomicOutputFile hits_file(hits_path.string(), true);
+  std::ostream& hits = hits_file.stream();
   std::vector<std::vector<int64_t>> ids(threads.size());
   for (std::size_t k = 0; k < threads.size(); ++k) ids[k].assign(threads[k].rays.size(), -1);
   int64_t next_id = 0, moved_origins = 0, cleared_tmin = 0, incomplete = 0;
@@ -250,9 +259,7 @@ MergeResult merge_capture(const std::string& raw_dir, const std::string& out_dir
       hits << hit_line(tr.id, r, scene.triangle_hit(r).triangle);
     }
   }
-  sink->close();
-  hits.close();
-  if (!hits) throw std::runtime_error(fmt::format("{}: write failed", hits_tmp.string()));
+  hits_file.check();
 
   // The report.
   json calls = json::object(), rays = json::object();
@@ -274,8 +281,8 @@ MergeResult merge_capture(const std::string& raw_dir, const std::string& out_dir
   json other_processes = json::array();
   int64_t other_process_rays = 0;
   for (const auto& [p, n] : tally_.rays_by_process)
-    if (p != pid) {
-      other_processes.push_back({{"pid", p}, {"rays", n}});
+    if (!(p == traced)) {
+      other_processes.push_back({{"pid", p.pid}, {"image", p.image}, {"rays", n}});
       other_process_rays += n;
     }
   json kinds = json::object();
@@ -293,7 +300,8 @@ MergeResult merge_capture(const std::string& raw_dir, const std::string& out_dir
   out.incomplete_rays = incomplete;
   out.report = {
       {"command", opt.command},
-      {"pid", pid},
+      {"pid", traced.pid},
+      {"image", traced.image},
       {"threads", threads.size()},
       {"calls", calls},
       {"rays_by_function", rays},
@@ -316,17 +324,10 @@ MergeResult merge_capture(const std::string& raw_dir, const std::string& out_dir
       {"rules", {{"link_ulps", opt.rules.ulps}, {"link_normal_offset", opt.rules.normal_offset},
                  {"history", opt.rules.history}, {"mirror_radians", opt.rules.mirror_radians}}},
   };
-  rename_into_place(scene_tmp, scene_path);
-  rename_into_place(hits_tmp, hits_path);
-  rename_into_place(trace_tmp, trace_path);
-  {
-    const fs::path report_tmp = dir / "capture.partial.json";
-    std::ofstream f(report_tmp);
-    f << out.report.dump(2) << "\n";
-    if (!f.flush()) throw std::runtime_error(fmt::format("{}: write failed", report_tmp.string()));
-    f.close();
-    rename_into_place(report_tmp, dir / "capture.json");
-  }
+  scene_file.commit();
+  hits_file.commit();
+  sink->close();
+  write_output_file((dir / "capture.json").string(), out.report.dump(2) + "\n", "capture report");
   std::string by_function;
   for (const auto& [name, n] : rays.items()) by_function += fmt::format("{}{} {}", by_function.empty() ? "" : ", ", name, n.get<int64_t>());
   out.summary = fmt::format(
@@ -334,7 +335,7 @@ MergeResult merge_capture(const std::string& raw_dir, const std::string& out_dir
       "  scene: {} triangles -> {}\n"
       "  links: {} at the hit point, {} offset along the normal (up to {:.3g} of the hit point's size); "
       "unlinked: {} intersect, {} occluded\n"
-      "  not captured: {} rays of other processes, {} of other scenes or commits, {} invalid; "
+      "  not captured: {} rays of other processes (or programs they exec'd), {} of other scenes or commits, {} invalid; "
       "{} hits outside the captured triangles\n"
       "  geometries not in the trace: {}\n",
       next_id, threads.size(), threads.size() == 1 ? "" : "s", by_function, trace_path.string(),

@@ -18,27 +18,29 @@ namespace vbsim::capture {
 
 namespace fs = std::filesystem;
 
-std::map<long, ProcessFiles> find_capture_files(const std::string& dir) {
-  static const std::regex rays_name(R"(rays-(\d+)-(\d+)\.bin)");
-  static const std::regex scene_name(R"(scene-(\d+)-(\d+)-(\d+)\.bin)");
-  static const std::regex summary_name(R"(process-(\d+)\.txt)");
-  std::map<long, ProcessFiles> out;
+std::map<ProcessImage, ProcessFiles> find_capture_files(const std::string& dir) {
+  static const std::regex rays_name(R"(rays-(\d+)\.(\d+)-(\d+)\.bin)");
+  static const std::regex scene_name(R"(scene-(\d+)\.(\d+)-(\d+)-(\d+)\.bin)");
+  static const std::regex summary_name(R"(process-(\d+)\.(\d+)\.txt)");
+  std::map<ProcessImage, ProcessFiles> out;
+  auto image_of = [](const std::smatch& m) {
+    return ProcessImage{std::stol(m[1]), static_cast<unsigned>(std::stoul(m[2]))};
+  };
   std::error_code ec;
   for (const auto& entry : fs::directory_iterator(dir, ec)) {
     const std::string name = entry.path().filename().string(), path = entry.path().string();
     std::smatch m;
     if (std::regex_match(name, m, rays_name)) {
-      ProcessFiles& p = out[std::stol(m[1])];
-      p.ray_files[std::stoi(m[2])] = path;
+      out[image_of(m)].ray_files[std::stoi(m[3])] = path;
     } else if (std::regex_match(name, m, scene_name)) {
-      ProcessFiles& p = out[std::stol(m[1])];
-      p.scenes[{static_cast<uint32_t>(std::stoul(m[2])), static_cast<uint32_t>(std::stoul(m[3]))}] = path;
+      out[image_of(m)].scenes[{static_cast<uint32_t>(std::stoul(m[3])), static_cast<uint32_t>(std::stoul(m[4]))}] =
+          path;
     } else if (std::regex_match(name, m, summary_name)) {
-      out[std::stol(m[1])].summary = path;
+      out[image_of(m)].summary = path;
     }
   }
   if (ec) throw std::runtime_error(fmt::format("{}: cannot read the capture directory: {}", dir, ec.message()));
-  for (auto& [pid, p] : out) p.pid = pid;
+  for (auto& [id, p] : out) p.id = id;
   return out;
 }
 

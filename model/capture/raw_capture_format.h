@@ -3,19 +3,26 @@
 // the same machine), shared by both sides; standard library only, since the
 // shim is loaded into applications that know nothing of vbsim.
 //
-// In the directory named by VBSIM_CAPTURE_DIR, per process <pid>:
-//   rays-<pid>-<k>.bin          RawRay records of the k-th thread that traced
+// In the directory named by VBSIM_CAPTURE_DIR, per process image <image>,
+// named <pid>.<g>: the process's pid and the first g from 0 whose summary
+// file did not exist yet when the image first wrote (claimed with O_EXCL), so
+// an image that a process exec()s under the same pid, a forked child and a
+// later process with a reused pid each write files of their own:
+//   rays-<image>-<k>.bin        RawRay records of the k-th thread that traced
 //                               a ray, in the order that thread made its calls
-//   scene-<pid>-<s>-<c>.bin     scene s (0-based, in rtcNewScene order) at its
+//   scene-<image>-<s>-<c>.bin   scene s (0-based, in rtcNewScene order) at its
 //                               c-th rtcCommitScene (from 1): RawSceneHeader,
 //                               then per attached geometry a RawGeometry and,
 //                               when captured, its vertices and indices
-//   process-<pid>.txt           written when the process exits normally:
+//   process-<image>.txt         created empty when the image claims its name;
+//                               written when the process exits normally or
+//                               just before it exec()s another program:
 //                               "key value" lines (calls and rays per API,
 //                               threads, scenes, commits, whether a shared
 //                               libembree3 was loaded, filter functions the
-//                               shim could not watch); its absence means the
-//                               process did not finish
+//                               shim could not watch, ended_by_exec) ending
+//                               with "complete 1"; without that line the
+//                               image did not finish
 #pragma once
 #include <cstdint>
 

@@ -36,6 +36,8 @@ struct ThreadBuffer {
 
 struct Process {
   std::mutex m;  // guards `buffers`, `next_index` and the files
+  std::mutex claim_m;  // guards `image` (taken after `m` when both are)
+  std::string image;   // "<pid>.<g>" once claimed, else empty
   std::vector<ThreadBuffer*> buffers;
   int next_index = 0;
   std::string dir;
@@ -72,6 +74,32 @@ bool write_all(int fd, const void* data, std::size_t n) {
   return true;
 }
 
+/// Images of one pid tried before giving up (an exec chain, a reused pid).
+constexpr unsigned kMaxImagesPerPid = 1u << 16;
+
+/// This image's name, claimed on first use: <pid>.<g> with the first g for
+/// which process-<pid>.<g>.txt can be created anew (O_EXCL). An exec'd image
+/// keeps the pid but not the memory, so it claims the next g; a forked child,
+/// or a later process given a reused pid, claims its own too. Nothing of one
+/// image ever writes over another's files.
+std::string claimed_image() {
+  Process& p = process();
+  std::lock_guard<std::mutex> lock(p.claim_m);
+  if (!p.image.empty()) return p.image;
+  for (unsigned g = 0; g < kMaxImagesPerPid; ++g) {
+    const std::string image = std::to_string(p.pid) + "." + std::to_string(g);
+    const std::string path = p.dir + "/process-" + image + ".txt";
+    const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+    if (fd >= 0) {
+      ::close(fd);
+      return p.image = image;
+    }
+    if (errno != EEXIST) break;
+  }
+  p.write_failed = true;  // the directory cannot be written: nothing will be
+  return p.image = std::to_string(p.pid) + ".0";
+}
+
 int create_file(const std::string& name) {
   const std::string path = process().dir + "/" + name;
   const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
@@ -98,7 +126,7 @@ ThreadBuffer* new_buffer() {
   auto* b = new ThreadBuffer;
   std::lock_guard<std::mutex> lock(p.m);
   b->index = p.next_index++;
-  b->fd = create_file("rays-" + std::to_string(p.pid) + "-" + std::to_string(b->index) + ".bin");
+  b->fd = create_file("rays-" + claimed_image() + "-" + std::to_string(b->index) + ".bin");
   p.buffers.push_back(b);
   return b;
 }
@@ -125,7 +153,8 @@ struct ThreadSlot {
 };
 thread_local ThreadSlot t_slot;
 
-void write_summary() {
+/// `before_exec`: the image is about to be replaced (ended_by_exec 1).
+void write_summary(bool before_exec) {
   Process& p = process();
   std::string s = "pid " + std::to_string(p.pid) + "\n";
   for (int op = 0; op < 2; ++op)
@@ -142,8 +171,9 @@ void write_summary() {
   // program links Embree statically or not at all).
   s += std::string("embree_loaded ") + (dlsym(RTLD_NEXT, "rtcNewDevice") ? "1" : "0") + "\n";
   s += "unwatched_filter_functions " + std::to_string(unwatched_filter_functions()) + "\n";
+  s += std::string("ended_by_exec ") + (before_exec ? "1" : "0") + "\n";
   s += "complete 1\n";
-  write_capture_file("process-" + std::to_string(p.pid) + ".txt", s);
+  write_capture_file("process-" + claimed_image() + ".txt", s);
 }
 
 /// At process exit (after atexit handlers and the main thread's thread-local
@@ -158,19 +188,26 @@ __attribute__((destructor)) void finish_capture() {
       close_locked(*b);
     }
   }
-  write_summary();
+  write_summary(false);
 }
 
 // fork(): the child keeps only the forking thread. It must not write the
 // parent's buffered records again, so it drops every buffer and starts afresh
-// under its own pid.
-void before_fork() { process().m.lock(); }
-void after_fork_parent() { process().m.unlock(); }
+// under its own pid and image name.
+void before_fork() {
+  process().m.lock();
+  process().claim_m.lock();
+}
+void after_fork_parent() {
+  process().claim_m.unlock();
+  process().m.unlock();
+}
 void after_fork_child() {
   Process& p = process();
   p.buffers.clear();  // the parent's buffers: abandoned, never written from here
   p.next_index = 0;
   p.pid = static_cast<long>(::getpid());
+  p.image.clear();  // claimed when the child first writes
   for (auto& op : p.calls)
     for (auto& c : op) c = 0;
   for (auto& op : p.rays)
@@ -178,6 +215,7 @@ void after_fork_child() {
   p.scenes = 0;
   p.commits = 0;
   t_slot.buffer = nullptr;
+  p.claim_m.unlock();
   p.m.unlock();
 }
 
@@ -214,7 +252,22 @@ void write_capture_file(const std::string& name, const std::string& bytes) {
   ::close(fd);
 }
 
-long capture_pid() { return process().pid; }
+std::string capture_image() { return claimed_image(); }
+
+void prepare_for_exec() {
+  Process& p = process();
+  // A vfork() child runs in its parent's memory (no fork handler ran, so the
+  // pid differs): the parent's buffers and summary are not its to write.
+  if (!p.enabled || p.closing.load() || static_cast<long>(::getpid()) != p.pid) return;
+  {
+    std::lock_guard<std::mutex> lock(p.m);
+    for (ThreadBuffer* b : p.buffers) {
+      std::lock_guard<std::mutex> bl(b->m);
+      flush_locked(*b);  // the files stay open: a failed exec goes on writing them
+    }
+  }
+  write_summary(true);
+}
 void count_scene() { process().scenes.fetch_add(1); }
 void count_commit() { process().commits.fetch_add(1); }
 

@@ -1,6 +1,7 @@
 // Process-wide output of the capture shim: per-thread ray buffers written to
-// rays-<pid>-<k>.bin, scene snapshots, and the process summary written at exit
-// (file layouts: model/capture/raw_capture_format.h). Every function may be
+// rays-<image>-<k>.bin, scene snapshots, and the process summary written at
+// exit or before an exec() (file layouts and the image name <pid>.<g>:
+// model/capture/raw_capture_format.h). Every function may be
 // called from any thread. The shim only reads what the application passes to
 // Embree and what Embree returns; nothing here touches the application's data.
 #pragma once
@@ -24,8 +25,14 @@ void count_call(capture::RawApi api, bool occluded);
 /// Writes `bytes` as the file `name` in the capture directory (whole, at once).
 void write_capture_file(const std::string& name, const std::string& bytes);
 
-/// The process id the files are named after (updated in a forked child).
-long capture_pid();
+/// The name of this process image's files, "<pid>.<g>" (claimed on first
+/// use; a forked child and an exec'd image claim their own).
+std::string capture_image();
+
+/// Before the process replaces its image (exec): writes out every thread's
+/// buffered records and the summary, marked as ended by an exec. If the exec
+/// fails, capture goes on and the summary is written again at exit.
+void prepare_for_exec();
 
 /// Counts scenes created and commits seen, for the summary.
 void count_scene();

@@ -233,7 +233,7 @@ void on_commit(RTCScene scene) {
   h.geometries = static_cast<uint32_t>(s.attached.size());
   std::string file(reinterpret_cast<const char*>(&h), sizeof h);
   file += body;
-  write_capture_file("scene-" + std::to_string(capture_pid()) + "-" + std::to_string(s.ordinal) + "-" +
+  write_capture_file("scene-" + capture_image() + "-" + std::to_string(s.ordinal) + "-" +
                          std::to_string(s.commit) + ".bin",
                      file);
   s.last_snapshot = std::move(body);

@@ -10,8 +10,12 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <mutex>
+#include <vector>
 
 #include <fmt/format.h>
+
+#include "io/stale_temporaries.h"
 
 namespace vbsim {
 
@@ -20,7 +24,7 @@ namespace {
 // ---- signal-time cleanup of open temporaries ----
 // A fixed table, so that the handler only reads memory and calls unlink(),
 // both async-signal-safe. Slots beyond the table are simply not cleaned up.
-constexpr int kCleanupSlots = 64;
+constexpr int kCleanupSlots = 1024;  // untouched slots cost no memory (zero pages)
 constexpr size_t kCleanupPathBytes = 4096;
 std::array<std::array<char, kCleanupPathBytes>, kCleanupSlots> g_cleanup_paths;
 std::array<std::atomic<bool>, kCleanupSlots> g_cleanup_used{};
@@ -79,6 +83,20 @@ std::string temporary_name(const std::string& path) {
 
 std::string reason() { return errno != 0 ? std::strerror(errno) : "I/O error"; }
 
+// ---- held commits ----
+struct HeldOutput {
+  std::string temp, path;
+  int slot;  ///< its place on the cleanup list, -1: none
+};
+std::atomic<bool> g_holding{false};
+std::mutex g_held_mutex;
+std::vector<HeldOutput> g_held;  // in the order of their commit()
+
+void hold(std::string temp, std::string path, int slot) {
+  std::lock_guard<std::mutex> lock(g_held_mutex);
+  g_held.push_back({std::move(temp), std::move(path), slot});
+}
+
 }  // namespace
 
 AtomicOutputFile::AtomicOutputFile(std::string path, bool binary) : path_(std::move(path)) {
@@ -94,6 +112,7 @@ AtomicOutputFile::AtomicOutputFile(std::string path, bool binary) : path_(std::m
       const std::filesystem::path target = std::filesystem::canonical(path_, ec);
       if (!ec) path_ = target.string();
     }
+    remove_stale_temporaries(path_);  // those of runs that were killed (stale_temporaries.h)
     temp_ = temporary_name(path_);
   }
   std::ios::openmode mode = std::ios::out | std::ios::trunc;
@@ -126,6 +145,12 @@ void AtomicOutputFile::commit() {
     ok = false;
     why = reason();
   }
+  if (ok && !in_place_ && g_holding.load()) {  // complete: renamed by commit_held_outputs()
+    hold(temp_, path_, registry_slot_);
+    registry_slot_ = -1;
+    done_ = committed_ = true;
+    return;
+  }
   if (ok && !in_place_ && std::rename(temp_.c_str(), path_.c_str()) != 0) {
     ok = false;
     why = fmt::format("cannot rename {} to it: {}", temp_, reason());
@@ -145,6 +170,51 @@ void AtomicOutputFile::discard() noexcept {
   if (!in_place_) ::unlink(temp_.c_str());
   unregister_temporary(registry_slot_);
 }
+
+void hold_output_commits() { g_holding = true; }
+
+void commit_held_outputs() {
+  std::lock_guard<std::mutex> lock(g_held_mutex);
+  g_holding = false;
+  std::string failed_path, why;
+  for (const HeldOutput& h : g_held) {
+    errno = 0;
+    if (failed_path.empty() && std::rename(h.temp.c_str(), h.path.c_str()) != 0) {
+      failed_path = h.path;
+      why = fmt::format("cannot rename {} to it: {}", h.temp, reason());
+    }
+    if (!failed_path.empty()) ::unlink(h.temp.c_str());
+    unregister_temporary(h.slot);
+  }
+  g_held.clear();
+  if (!failed_path.empty()) throw OutputError(failed_path, "write failed: " + why);
+}
+
+void discard_held_outputs() noexcept {
+  std::lock_guard<std::mutex> lock(g_held_mutex);
+  g_holding = false;
+  for (const HeldOutput& h : g_held) {
+    ::unlink(h.temp.c_str());
+    unregister_temporary(h.slot);
+  }
+  g_held.clear();
+}
+
+std::string finished_output_path(const std::string& path) {
+  std::string named = path;
+  std::error_code ec;
+  if (std::filesystem::is_symlink(path, ec)) {  // as the constructor names it
+    const std::filesystem::path target = std::filesystem::canonical(path, ec);
+    if (!ec) named = target.string();
+  }
+  std::lock_guard<std::mutex> lock(g_held_mutex);
+  for (auto h = g_held.rbegin(); h != g_held.rend(); ++h)
+    if (h->path == named) return h->temp;
+  return path;
+}
+
+CommitsAtOnce::CommitsAtOnce() : was_holding_(g_holding.exchange(false)) {}
+CommitsAtOnce::~CommitsAtOnce() { g_holding = was_holding_; }
 
 void exit_on_interrupt(int exit_code) {
   g_interrupt_exit_code = exit_code;

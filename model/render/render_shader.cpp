@@ -228,6 +228,7 @@ void RenderShader::finish_pixel(uint32_t pixel, PixelState& p) {
   result_.acne_pixels += (m & kMarkAcne) != 0;
   result_.leak_pixels += (m & kMarkLeak) != 0;
   ++finished_;
+  if (on_pixel_) on_pixel_(finished_);
 }
 
 RenderResult RenderShader::take_result() {

@@ -33,6 +33,9 @@ class RenderShader final : public RayShader {
 
   /// Receives every ray as it is cast (its id and `expect` set); may be empty.
   void set_cast_callback(std::function<void(const TraceRay&)> on_cast) { on_cast_ = std::move(on_cast); }
+  /// Receives the number of pixels finished so far each time a pixel is
+  /// finished (for a progress display); may be empty.
+  void set_pixel_callback(std::function<void(uint64_t)> on_pixel) { on_pixel_ = std::move(on_pixel); }
   /// The image, error image and pixel counts (stats and wall_s are the
   /// driver's). Throws std::logic_error before every pixel is finished.
   RenderResult take_result();
@@ -81,6 +84,7 @@ class RenderShader final : public RayShader {
   std::unordered_map<int64_t, RayContext> in_flight_;
   std::unordered_map<uint32_t, PixelState> pixels_live_;
   std::function<void(const TraceRay&)> on_cast_;
+  std::function<void(uint64_t)> on_pixel_;
   RenderResult result_;
   uint32_t finished_ = 0;
 };

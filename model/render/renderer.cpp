@@ -38,9 +38,11 @@ void check_render_settings(const RenderSettings& s) {
 }
 
 RenderResult render_scene(const Scene& scene, const Bvh& bvh, const ReplayOptions& options,
-                          const RenderSettings& settings, const std::function<void(const TraceRay&)>& on_cast) {
+                          const RenderSettings& settings, const std::function<void(const TraceRay&)>& on_cast,
+                          const std::function<void(uint64_t)>& on_pixel) {
   RenderShader shader(scene, bvh, settings, options.parent_window);
   shader.set_cast_callback(on_cast);
+  shader.set_pixel_callback(on_pixel);
   FunctionalReplayer replayer(scene, bvh, options);
   const auto start = std::chrono::steady_clock::now();
   run_functional_closed_loop(shader, replayer);

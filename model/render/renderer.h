@@ -85,9 +85,11 @@ struct RenderResult {
 /// Renders `scene` with the method, tester and hit-point mode of `options`,
 /// untimed. Throws std::invalid_argument on a bad size, camera or setting.
 /// `on_cast` (may be empty) receives every ray as it is cast, its `expect`
-/// filled (a closed-loop trace).
+/// filled (a closed-loop trace); `on_pixel` (may be empty) the number of
+/// pixels finished so far, each time one is finished.
 RenderResult render_scene(const Scene& scene, const Bvh& bvh, const ReplayOptions& options,
                           const RenderSettings& settings,
-                          const std::function<void(const TraceRay&)>& on_cast = {});
+                          const std::function<void(const TraceRay&)>& on_cast = {},
+                          const std::function<void(uint64_t)>& on_pixel = {});
 
 }  // namespace vbsim

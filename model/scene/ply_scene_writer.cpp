@@ -34,8 +34,8 @@ constexpr uint8_t kGuardByte = 'G';
 
 }  // namespace
 
-void write_ply_scene(const std::string& path, const std::vector<Triangle>& triangles,
-                     const std::vector<std::array<Vec3f, 3>>& normals, const std::string& comment) {
+std::string ply_scene_bytes(const std::string& path, const std::vector<Triangle>& triangles,
+                            const std::vector<std::array<Vec3f, 3>>& normals, const std::string& comment) {
   const bool with_normals = !normals.empty();
   if (with_normals && normals.size() != triangles.size())
     throw SceneError(fmt::format("{}: {} normal triples for {} triangles", path, normals.size(),
@@ -63,6 +63,12 @@ void write_ply_scene(const std::string& path, const std::vector<Triangle>& trian
     put(out, static_cast<uint8_t>(3));
     for (int c = 0; c < 3; ++c) put(out, static_cast<int32_t>(3 * k + c));
   }
+  return out;
+}
+
+void write_ply_scene(const std::string& path, const std::vector<Triangle>& triangles,
+                     const std::vector<std::array<Vec3f, 3>>& normals, const std::string& comment) {
+  const std::string out = ply_scene_bytes(path, triangles, normals, comment);
   try {
     AtomicOutputFile file(path, true);
     file.stream().write(out.data(), static_cast<std::streamsize>(out.size()));

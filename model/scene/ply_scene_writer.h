@@ -25,4 +25,9 @@ namespace vbsim {
 void write_ply_scene(const std::string& path, const std::vector<Triangle>& triangles,
                      const std::vector<std::array<Vec3f, 3>>& normals = {}, const std::string& comment = "");
 
+/// The bytes write_ply_scene writes, for a caller that writes the file itself
+/// (`path` only names it in errors). Throws SceneError as write_ply_scene does.
+std::string ply_scene_bytes(const std::string& path, const std::vector<Triangle>& triangles,
+                            const std::vector<std::array<Vec3f, 3>>& normals = {}, const std::string& comment = "");
+
 }  // namespace vbsim

@@ -2,11 +2,15 @@
 // shim and writes its rays and scene as a trace directory (docs/capture.md).
 #include <fmt/format.h>
 
+#include <unistd.h>
+
 #include <filesystem>
 
 #include "capture/application_launch.h"
 #include "capture/capture_merge.h"
 #include "commands.h"
+#include "exit_codes.h"
+#include "io/stale_temporaries.h"
 #include "provenance/provenance.h"
 
 namespace vbsim::cli {
@@ -20,24 +24,53 @@ struct CaptureArgs {
   capture::LinkRules rules;
 };
 
+/// Gives the shim's files of this run the name OUT/raw (replacing an earlier run's).
+void settle_raw(const std::filesystem::path& files, const std::filesystem::path& raw) {
+  std::filesystem::remove_all(raw);
+  std::filesystem::rename(files, raw);
+}
+
 void run_capture(const CaptureArgs& a) {
   namespace fs = std::filesystem;
   const fs::path raw = fs::path(a.out) / "raw";
-  fs::remove_all(raw);  // the shim's files of an earlier run must not mix with this one's
-  fs::create_directories(raw);
+  // The shim writes into a directory of this run's own (two captures into one
+  // OUT do not mix), named as every temporary is (NAME.partial-PID-N), so
+  // that the leftovers of a killed capture are removed by the next one.
+  remove_stale_temporaries(raw.string());
+  const fs::path files = fs::path(a.out) / fmt::format("raw.partial-{}-0", ::getpid());
+  fs::remove_all(files);
+  fs::create_directories(files);
   const std::string shim = capture::capture_shim_path();
-  const capture::LaunchResult run = capture::run_under_shim(a.command, shim, fs::absolute(raw).string());
-  if (!run.exited_normally())
+  const capture::LaunchResult run = capture::run_under_shim(a.command, shim, fs::absolute(files).string());
+  if (run.interrupted) {  // Ctrl-C or SIGTERM: no trace, the shim's files kept only with --keep-raw
+    if (a.keep_raw) settle_raw(files, raw);
+    else fs::remove_all(files);
+    fmt::print(stderr, "vbsim: interrupted\n");
+    throw CLI::RuntimeError(kExitInterrupted);
+  }
+  if (!run.exited_normally()) {
+    settle_raw(files, raw);
     throw std::runtime_error(fmt::format("{} {}: no trace written (the shim's files are in {})", a.command[0],
                                          run.describe(), raw.string()));
+  }
   capture::MergeOptions opt;
   opt.rules = a.rules;
   opt.binary = a.binary;
   opt.strip_offsets = a.strip_offsets;
   opt.command = a.command;
   opt.provenance = provenance_line({});  // the application's scene comes from memory, not a file
-  const capture::MergeResult merged = capture::merge_capture(raw.string(), a.out, opt);
-  if (!a.keep_raw) fs::remove_all(raw);
+  capture::MergeResult merged;
+  try {
+    merged = capture::merge_capture(files.string(), a.out, opt);
+  } catch (const std::exception&) {
+    settle_raw(files, raw);  // what the shim wrote, for a look at what went wrong
+    throw;
+  }
+  if (a.keep_raw) settle_raw(files, raw);
+  else {
+    fs::remove_all(files);
+    fs::remove_all(raw);  // an earlier run's: not the files of this trace
+  }
   fmt::print("{}", merged.summary);
   if (merged.incomplete_rays > 0 && !a.allow_partial)
     throw std::runtime_error(fmt::format(

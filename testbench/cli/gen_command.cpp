@@ -7,6 +7,7 @@
 #include <map>
 
 #include "commands.h"
+#include "io/atomic_output_file.h"
 #include "exit_codes.h"
 #include "gen/scenario.h"
 #include "gen_directory.h"
@@ -29,6 +30,10 @@ struct GenArgs {
 };
 
 void run_gen(const GenArgs& a) {
+  // gen writes no data on stdout, and its outputs are not held to the end:
+  // each case's scene is read back to compute its trace, and the list of the
+  // files it will write must be on disk before them (gen_directory.h).
+  const CommitsAtOnce at_once;
   const Scenario* scenario = find_scenario(a.scenario);
   if (!scenario) {
     std::string names;

@@ -110,11 +110,21 @@ int sc_main(int argc, char** argv) {
   guard_standard_streams();
   vbsim::exit_on_interrupt(kExitInterrupted);  // commands that stop cleanly install their own handler
   vbsim::set_command_line(argc, argv);
+  // Data on stdout is an output like any other: the files a run writes are
+  // renamed to their names only once its data on stdout has arrived, and one
+  // that did not arrive fails the run and leaves none of them.
+  vbsim::hold_output_commits();
   const int code = run_command_line(argc, argv);
-  // Data on stdout is an output like any other: one that did not arrive fails the run.
   const std::string stdout_error = standard_output_error();
   if (!stdout_error.empty()) {
+    vbsim::discard_held_outputs();
     fmt::print(stderr, "vbsim: error: standard output: {}\n", stdout_error);
+    return code == kExitSuccess ? kExitRuntimeError : code;
+  }
+  try {
+    vbsim::commit_held_outputs();
+  } catch (const vbsim::OutputError& e) {
+    fmt::print(stderr, "vbsim: error: {}\n", e.what());
     return code == kExitSuccess ? kExitRuntimeError : code;
   }
   return code;

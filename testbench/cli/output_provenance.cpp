@@ -23,8 +23,9 @@ std::string markdown_provenance(const nlohmann::json& provenance) {
 }
 
 void add_vcd_provenance(const std::string& vcd_path, const nlohmann::json& provenance) {
-  if (!std::filesystem::is_regular_file(vcd_path)) return;  // /dev/null, a FIFO: nothing to read back
-  std::ifstream in(vcd_path, std::ios::binary);
+  const std::string written = finished_output_path(vcd_path);  // its name held until stdout has arrived
+  if (!std::filesystem::is_regular_file(written)) return;  // /dev/null, a FIFO: nothing to read back
+  std::ifstream in(written, std::ios::binary);
   if (!in) throw std::runtime_error(fmt::format("{}: cannot add the provenance comment", vcd_path));
   AtomicOutputFile out(vcd_path, true);
   std::string text = provenance.dump();
@@ -35,9 +36,10 @@ void add_vcd_provenance(const std::string& vcd_path, const nlohmann::json& prove
 }
 
 void add_timeline_provenance(const std::string& path, const nlohmann::json& provenance) {
-  if (!std::filesystem::is_regular_file(path)) return;  // /dev/null, a FIFO: nothing to read back
+  const std::string written = finished_output_path(path);  // its name held until stdout has arrived
+  if (!std::filesystem::is_regular_file(written)) return;  // /dev/null, a FIFO: nothing to read back
   // Copied through, never parsed: a timeline may be far larger than memory.
-  std::ifstream in(path, std::ios::binary);
+  std::ifstream in(written, std::ios::binary);
   if (!in || in.get() != '{') throw std::runtime_error(fmt::format("{}: cannot read the timeline back", path));
   AtomicOutputFile out(path, true);
   out.stream() << "{\"otherData\":" << nlohmann::json{{"provenance", provenance}}.dump() << ",";

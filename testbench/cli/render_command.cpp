@@ -26,6 +26,8 @@
 #include "render/float_list.h"
 #include "render/png_file.h"
 #include "render/renderer.h"
+#include "render_progress.h"
+#include "replay/replay_config.h"
 #include "replay/replay_run.h"
 #include "trace/trace_file.h"
 #include "trace/trace_header_json.h"
@@ -167,6 +169,8 @@ int run_render(const RenderArgs& a) {
       cast_trace ? std::function<void(const TraceRay&)>([&cast_trace](const TraceRay& tr) { cast_trace->write(tr); })
                  : nullptr;
 
+  RenderProgress progress(uint64_t(rs.width) * uint64_t(rs.height), a.quiet);
+  const std::function<void(uint64_t)> on_pixel = [&progress](uint64_t finished) { progress.update(finished); };
   RenderResult r;
   nlohmann::json hw;  // cycle mode: the hw section
   std::string table;
@@ -176,15 +180,21 @@ int run_render(const RenderArgs& a) {
     if (a.mode == "cycle") {
       set_systemc_quiet(a.quiet);
       cfg = hw::resolve_hw_config(a.method.config, a.preset);
+      try {
+        check_closed_loop_config(cfg);
+      } catch (const std::invalid_argument& e) {  // a field of the config file
+        throw ConfigError(fmt::format("{}: {}", a.method.config, e.what()));
+      }
       hw::CycleRunOptions run;
       run.tech = &tech;
-      CycleRenderResult c = render_scene_cycle(sb.scene, sb.bvh, opt, rs, cfg, run, on_cast);
+      CycleRenderResult c = render_scene_cycle(sb.scene, sb.bvh, opt, rs, cfg, run, on_cast, on_pixel);
       r = std::move(c.render);
       hw = std::move(c.run.hw);
       table = std::move(c.run.table);
     } else {
-      r = render_scene(sb.scene, sb.bvh, opt, rs, on_cast);
+      r = render_scene(sb.scene, sb.bvh, opt, rs, on_cast, on_pixel);
     }
+    progress.finish();
   } catch (const std::invalid_argument& e) {  // the camera or the exact judge refused a value: name the scene
     throw std::runtime_error(fmt::format("render of '{}': {}", a.scene, e.what()));
   }

@@ -72,3 +72,20 @@ TEST_CASE("ids out of order cost no memory that grows with the trace", "[memory]
 #endif
   }
 }
+
+TEST_CASE("caches configured far larger than a run touches cost host memory for the lines touched", "[memory]") {
+  // memory.l1.size_bytes 2^31 (and an L2 as large) took 2.1 GB on a 64-ray
+  // replay, 0.5 GB a core of tag array written out at start; the tag arrays
+  // now take host pages as their sets are touched.
+  const auto dir = scratch_dir("cache_host_memory");
+  write_file(dir / "big.json",
+             R"({"hw":{"cores":4,"memory":{"l1":{"size_bytes":2147483648},"l2":{"size_bytes":2147483648}}}})");
+  const std::string replay = std::string(VBSIM_BINARY) + " replay " + source_dir() +
+                             "/traces/bunny/paths.jsonl --mode cycle -q --stats /dev/null";
+  const auto [small_kb, small_code] = peak_kb(replay);
+  const auto [big_kb, big_code] = peak_kb(replay + " --config " + (dir / "big.json").string());
+  CHECK(small_code == 0);
+  CHECK(big_code == 0);
+  INFO("default caches " << small_kb << " KB, 4 x 2 GiB L1 and a 2 GiB L2 " << big_kb << " KB");
+  CHECK(big_kb < small_kb + 64 * 1024);
+}

@@ -146,3 +146,35 @@ TEST_CASE("render --mode cycle: the frame's hardware figures, and a closed-loop 
   CHECK(replayed["rays"] == stats["rays"]);
   CHECK(replayed["verdicts"] == stats["verdicts"]);  // each ray carries its exact answer
 }
+
+TEST_CASE("render --mode cycle refuses dependencies off, naming the config file, and without shader time replays to "
+          "its cycles",
+          "[render][cli][closed-loop]") {
+  // With hw.source.dependencies false a render of the bunny (path integrator,
+  // 40x30) gave 18,495 cycles and the replay of its --trace-out 17,447: the
+  // render's children always wait for their parents' answers, the replay's did not.
+  const auto dir = scratch_dir("render_cycle_deps");
+  const std::string obj = (dir / "quad.obj").string();
+  write_render_test_obj(obj);
+  const std::string common = "render " + obj + " --method none --size 12x9 --light " + kRenderTestLight +
+                             " --integrator path --spp 2 --bounces 1 --mode cycle -o " + (dir / "c.png").string();
+  write_file(dir / "nodeps.json", R"({"hw":{"source":{"dependencies":false}}})");
+  RunResult r = run_vbsim(common + " --config " + (dir / "nodeps.json").string());
+  CHECK(r.exit_code == 1);
+  CHECK_THAT(r.output, Catch::Contains((dir / "nodeps.json").string() + ": field 'hw.source.dependencies'") &&
+                           Catch::Contains("shader.latency_cycles"));
+  CHECK_FALSE(std::filesystem::exists(dir / "c.png"));
+
+  // What it would have meant, no time between an answer and its children, is shader latency 0.
+  write_file(dir / "nolatency.json", R"({"hw":{"shader":{"latency_cycles":0}}})");
+  const std::string config = " --config " + (dir / "nolatency.json").string();
+  r = run_vbsim(common + config + " --stats " + (dir / "c.json").string() + " --trace-out " +
+                (dir / "c.jsonl").string() + " -q");
+  REQUIRE(r.exit_code == 0);
+  r = run_vbsim("replay " + (dir / "c.jsonl").string() + " --method none --mode cycle" + config + " --stats " +
+                (dir / "r.json").string() + " -q");
+  REQUIRE(r.exit_code == 0);
+  const auto rendered = nlohmann::json::parse(read_file(dir / "c.json"));
+  const auto replayed = nlohmann::json::parse(read_file(dir / "r.json"));
+  CHECK(replayed["hw"]["cycles"] == rendered["hw"]["cycles"]);
+}

@@ -1,9 +1,13 @@
 // The LRU tag array: eviction order by hand on a tiny cache, fill cycles that
 // travel with their lines, lines in flight kept, and the hit/miss sequence and
 // fill cycles of random streams (every line filled when it is installed)
-// against an explicit most-recent-first list per set.
+// against an explicit most-recent-first list per set; a tag array sized far
+// beyond the lines touched costs host memory for those only.
 #include <catch2/catch.hpp>
 
+#include <unistd.h>
+
+#include <cstdio>
 #include <random>
 #include <unordered_map>
 #include <vector>
@@ -113,4 +117,41 @@ TEST_CASE("LRU cache matches an explicit LRU list on random streams", "[memory][
   check_against_lists<4>(8, 4);  // the forms the hierarchy compiles for the presets
   check_against_lists<8>(4, 8);
   check_against_lists<16>(2, 16);
+}
+
+namespace {
+
+/// Resident host memory of this process, in bytes (/proc/self/statm).
+long resident_bytes() {
+  std::FILE* f = std::fopen("/proc/self/statm", "r");
+  long size = 0, resident = 0;
+  if (f) {
+    if (std::fscanf(f, "%ld %ld", &size, &resident) != 2) resident = 0;
+    std::fclose(f);
+  }
+  return resident * ::sysconf(_SC_PAGESIZE);
+}
+
+}  // namespace
+
+TEST_CASE("LRU cache: a tag array far larger than the lines touched costs host memory for those only",
+          "[memory][lru]") {
+  // 2^24 sets of 4 ways: 1 GiB of ways, the tag array of a 4 GiB cache of 64-byte lines.
+  const long before = resident_bytes();
+  LruCache c(1u << 24, 4);
+  uint64_t fill = 0;
+  // Untouched sets read as empty; lines far apart are found in their own sets.
+  for (uint64_t k = 0; k < 1000; ++k) {
+    const uint64_t line = k * 16411 + (k << 26);
+    CHECK_FALSE(c.touch(line, fill));
+    CHECK(c.install(line, k, 0) == LruCache::kNoLine);
+  }
+  for (uint64_t k = 0; k < 1000; ++k) {
+    REQUIRE(c.touch(k * 16411 + (k << 26), fill));
+    CHECK(fill == k);
+  }
+  CHECK_FALSE(c.contains(LruCache::kNoLine - 1));
+  const long grown = resident_bytes() - before;
+  INFO("resident memory grew by " << grown << " bytes");
+  CHECK(grown < (64l << 20));  // 1000 sets touched: at most 1000 pages, not 1 GiB
 }

@@ -10,20 +10,25 @@
 // its `ways` ways side by side (16 bytes each, a set starting on a 64-byte host
 // line, so a 4-way set is one host line), most recently used first (empty ways,
 // kNoLine, last), so a hit moves its line to the front and an install evicts
-// the last one that is not in flight.
+// the last one that is not in flight. A way holds its line complemented (~line),
+// so that an empty way is all zero bytes: the storage starts as zeros that the
+// host supplies a page at a time on first write (ZeroedHostArray), and host
+// memory follows the sets a run touches, not the cache's configured size.
 #pragma once
 #include <cstddef>
 #include <cstdint>
-#include <vector>
+
+#include "hw/memory/zeroed_host_array.h"
 
 namespace vbsim::hw {
 
 class LruCache {
  public:
   static constexpr uint64_t kNoLine = ~uint64_t{0};
-  /// One way: a line and its fill cycle.
+  /// One way: a line (stored complemented: key ~line, 0 when empty) and its fill cycle.
   struct Way {
-    uint64_t line = kNoLine, fill = 0;
+    uint64_t key = 0, fill = 0;
+    uint64_t line() const { return ~key; }
   };
 
   /// `sets` >= 1 and `ways` >= 1 (make_memory validates the configuration).
@@ -38,11 +43,12 @@ class LruCache {
   bool touch_in(uint32_t set_index, uint64_t line, uint64_t& fill) {
     const uint32_t ways = Ways ? Ways : ways_;
     Way* set = set_at_index(set_index, ways);
-    if (set[0].line == line) {  // already the most recent: nothing moves
+    const uint64_t key = ~line;
+    if (set[0].key == key) {  // already the most recent: nothing moves
       fill = set[0].fill;
       return true;
     }
-    const uint32_t w = Ways ? find_in<Ways>(set, line) : find_in(set, line, ways);
+    const uint32_t w = Ways ? find_in<Ways>(set, key) : find_in(set, key, ways);
     if (w == ways) return false;
     const Way hit = set[w];
     for (uint32_t i = w; i > 0; --i) set[i] = set[i - 1];  // the line becomes the most recent
@@ -53,7 +59,7 @@ class LruCache {
   /// True when `line` is present; changes nothing.
   bool contains(uint64_t line) const {
     const Way* set = set_at_index(set_of(line), ways_);
-    return find_in(set, line, ways_) != ways_;
+    return find_in(set, ~line, ways_) != ways_;
   }
   /// Puts `line` (not present) with fill cycle `fill` into its set at cycle
   /// `now`, as the most recently used line. It replaces an empty way, else the
@@ -69,9 +75,9 @@ class LruCache {
     Way* set = set_at_index(set_index, ways);
     // The usual case: the least recent way (an empty way has fill 0) is not in flight.
     if (set[ways - 1].fill > now) return install_past_flight(set, ways, line, fill, now);
-    const uint64_t replaced = set[ways - 1].line;
+    const uint64_t replaced = set[ways - 1].line();
     for (uint32_t i = ways - 1; i > 0; --i) set[i] = set[i - 1];  // every way one place down
-    set[0] = {line, fill};
+    set[0] = {~line, fill};
     return replaced;
   }
 
@@ -81,7 +87,7 @@ class LruCache {
   /// left the array meanwhile.
   bool set_fill(uint64_t line, uint64_t fill) {
     Way* set = set_at_index(set_of(line), ways_);
-    const uint32_t w = find_in(set, line, ways_);
+    const uint32_t w = find_in(set, ~line, ways_);
     if (w == ways_) return false;
     set[w].fill = fill;
     return true;
@@ -90,7 +96,7 @@ class LruCache {
   /// The fill cycle of `line`, or 0 when it is not in the array.
   uint64_t fill_of(uint64_t line) const {
     const Way* set = set_at_index(set_of(line), ways_);
-    const uint32_t w = find_in(set, line, ways_);
+    const uint32_t w = find_in(set, ~line, ways_);
     return w == ways_ ? 0 : set[w].fill;
   }
 
@@ -113,10 +119,10 @@ class LruCache {
   static constexpr uint32_t kWaysPerHostLine = 64 / sizeof(Way);
 
   Way* set_at_index(uint32_t set_index, uint32_t ways) {
-    return storage_.data()->ways + static_cast<size_t>(set_index) * set_stride(ways);
+    return static_cast<HostLine*>(storage_.data())->ways + static_cast<size_t>(set_index) * set_stride(ways);
   }
   const Way* set_at_index(uint32_t set_index, uint32_t ways) const {
-    return storage_.data()->ways + static_cast<size_t>(set_index) * set_stride(ways);
+    return static_cast<const HostLine*>(storage_.data())->ways + static_cast<size_t>(set_index) * set_stride(ways);
   }
   /// Ways from one set's start to the next: whole host lines.
   static size_t set_stride(uint32_t ways) {
@@ -124,22 +130,23 @@ class LruCache {
   }
   /// install_in() when the least recent way is in flight at `now` (kept out of line).
   static uint64_t install_past_flight(Way* set, uint32_t ways, uint64_t line, uint64_t fill, uint64_t now);
-  /// Way of `line` in `set`, or `ways`: every way is compared (no early exit,
-  /// so no branch depends on where the line is); unrolled when `Ways` is known.
+  /// Way holding `key` (~line) in `set`, or `ways`: every way is compared (no
+  /// early exit, so no branch depends on where the line is); unrolled when
+  /// `Ways` is known.
   template <uint32_t Ways>
-  static uint32_t find_in(const Way* set, uint64_t line) {
-    return find_in(set, line, Ways);
+  static uint32_t find_in(const Way* set, uint64_t key) {
+    return find_in(set, key, Ways);
   }
-  static uint32_t find_in(const Way* set, uint64_t line, uint32_t ways) {
+  static uint32_t find_in(const Way* set, uint64_t key, uint32_t ways) {
     uint32_t found = ways;
-    for (uint32_t w = ways; w-- > 0;) found = set[w].line == line ? w : found;
+    for (uint32_t w = ways; w-- > 0;) found = set[w].key == key ? w : found;
     return found;
   }
 
   uint32_t sets_, ways_;
   bool sets_pow2_;                  // sets is a power of two (1 included): a set is line & set_mask_
   uint64_t set_mask_;               // sets - 1
-  std::vector<HostLine> storage_;   // sets * set_stride(ways) ways; per set in recency order
+  ZeroedHostArray storage_;         // HostLines: sets * set_stride(ways) ways; per set in recency order
 };
 
 }  // namespace vbsim::hw
