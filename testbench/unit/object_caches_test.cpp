@@ -88,3 +88,42 @@ TEST_CASE("an object cache takes one lookup per port interval", "[memory][object
   CHECK(oc.read(map.node(3), 64, 0, 1) == 3 + 74 + 2);  // looked up at 3
   CHECK(oc.read(map.node(1), 64, 0, 2) == 0 + 18 + 2);       // another cache: its own port
 }
+
+TEST_CASE("an object cache takes an entry when its data arrive, as rtcore's does", "[memory][objects]") {
+  const Bvh bvh = four_nodes();
+  const HwConfig cfg = objects_config();  // the low-precision node cache holds one object
+  ObjectCaches oc("object_caches_fill", cfg, bvh);
+  const BvhAddressMap map(bvh, 0);
+  using K = ObjectCachesConfig;
+  CHECK(oc.read(map.node(0), 64, 0, 0) == 20);       // a miss: arrives at 18
+  CHECK(oc.read(map.node(0), 64, 30, 0) == 32);      // a hit
+  CHECK(oc.read(map.node(1), 64, 40, 0) == 40 + 20); // a miss: node 1 arrives at 58
+  // At 50 node 1 is on its way and holds no entry: node 0 is still there (allocating
+  // at the miss would have evicted it at 40).
+  CHECK(oc.read(map.node(0), 64, 50, 0) == 52);
+  // Node 1 arrived at 58 and took the one entry: node 0 misses at 60.
+  CHECK(oc.read(map.node(0), 64, 60, 0) == 60 + 20);
+  CHECK(oc.read(map.node(1), 64, 70, 0) == 72);      // node 1 is there until node 0 arrives at 78
+  CHECK(oc.read(map.node(1), 64, 78, 0) == 78 + 20); // node 0 arrived at 78, before this lookup
+  CHECK(oc.counters(K::NodeLow).hits == 3);
+  CHECK(oc.counters(K::NodeLow).misses == 4);
+  CHECK(oc.counters(K::NodeLow).misses_in_flight == 0);
+}
+
+TEST_CASE("two reads of one object in flight fill one entry", "[memory][objects]") {
+  const Bvh bvh = four_nodes();
+  HwConfig cfg = objects_config();
+  cfg.memory.objects.cache[ObjectCachesConfig::Node] = {2, 0};  // two objects, the reads' own bytes (64: 74 cycles)
+  ObjectCaches oc("object_caches_twice", cfg, bvh);
+  const BvhAddressMap map(bvh, 0);
+  using K = ObjectCachesConfig;
+  CHECK(oc.read(map.node(2), 64, 0, 0) == 76);   // arrives at 74
+  CHECK(oc.read(map.node(2), 64, 10, 0) == 86);  // in flight: read again, arrives at 84
+  CHECK(oc.read(map.node(3), 64, 80, 0) == 156); // arrives at 154
+  // Node 2's second arrival (84) moves it to the front instead of taking the second entry;
+  // node 3 arrives at 154 into the free entry, so both are there at 160.
+  CHECK(oc.read(map.node(2), 64, 160, 0) == 162);
+  CHECK(oc.read(map.node(3), 64, 161, 0) == 163);
+  CHECK(oc.counters(K::Node).misses_in_flight == 1);
+  CHECK(oc.counters(K::Node).hits == 2);
+}

@@ -63,6 +63,26 @@ uint64_t ObjectCaches::dram_read(uint32_t bytes, uint64_t at, uint64_t now) {
   return responses_ ? responses_->issue(arrival, now) : arrival;
 }
 
+void ObjectCaches::apply_fills(Cache& c, uint64_t at) {
+  while (!c.fills.empty() && c.fills.top().arrival <= at) {
+    const uint64_t addr = c.fills.top().addr;
+    c.fills.pop();
+    const auto flying = c.in_flight.find(addr);
+    if (--flying->second == 0) c.in_flight.erase(flying);
+    const auto it = c.entries.find(addr);
+    if (it != c.entries.end()) {  // arrived again: to the front
+      c.order.splice(c.order.begin(), c.order, it->second);
+      continue;
+    }
+    if (c.entries.size() == c.config.entries) {  // evict the least recently used
+      c.entries.erase(c.order.back());
+      c.order.pop_back();
+    }
+    c.order.push_front(addr);
+    c.entries.emplace(addr, c.order.begin());
+  }
+}
+
 uint64_t ObjectCaches::read(uint64_t addr, uint32_t bytes, uint64_t now, uint32_t) {
   ++reads_;
   bytes_ += bytes;
@@ -73,27 +93,22 @@ uint64_t ObjectCaches::read(uint64_t addr, uint32_t bytes, uint64_t now, uint32_
   }
   const uint64_t at = c->port->issue(now, now);  // the lookup
   ++c->counters.lookups;
+  apply_fills(*c, at);
   const auto it = c->entries.find(addr);
-  if (it != c->entries.end() && it->second.arrival <= at) {
+  if (it != c->entries.end()) {
     ++c->counters.hits;
-    c->order.splice(c->order.begin(), c->order, it->second.order);
+    c->order.splice(c->order.begin(), c->order, it->second);
     return at + config_.hit_latency;
   }
   ++c->counters.misses;
   const uint32_t object = c->config.bytes ? c->config.bytes : bytes;
   c->counters.dram_bytes += object;
   const uint64_t arrival = dram_read(object, at, now);
-  if (it != c->entries.end()) {  // its read is in flight: read again, never merged
-    ++c->counters.misses_in_flight;
-    it->second.arrival = std::min(it->second.arrival, arrival);
-    c->order.splice(c->order.begin(), c->order, it->second.order);
-  } else if (c->config.entries > 0) {
-    if (c->entries.size() == c->config.entries) {  // evict the least recently looked up
-      c->entries.erase(c->order.back());
-      c->order.pop_back();
-    }
-    c->order.push_front(addr);
-    c->entries.emplace(addr, Entry{c->order.begin(), arrival});
+  if (c->config.entries > 0) {
+    uint32_t& flying = c->in_flight[addr];
+    if (flying > 0) ++c->counters.misses_in_flight;  // its earlier read has not arrived: read again, never merged
+    ++flying;
+    c->fills.push(Fill{arrival, fill_seq_++, addr});
   }
   return arrival + config_.hit_latency;
 }

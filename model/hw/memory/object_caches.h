@@ -16,13 +16,20 @@
 // `responses_per_cycle` responses a cycle (the first free cycle at or after
 // the arrival), and its data are there `hit_latency` cycles after it arrives.
 // A miss is never merged: a lookup of an object whose read is still in flight
-// misses and reads it again, as rtcore's reorder buffer does; the object takes
-// its place at the front of the LRU order when it is looked up (rtcore's
-// when it arrives), and an entry is evicted then if the cache is full.
+// misses and reads it again, as rtcore's reorder buffer does. As in rtcore, an
+// object takes an entry when its data arrive, not when it misses: a read in
+// flight holds no entry and evicts nothing; at its arrival the object goes to
+// the front of the LRU order (already there from an earlier read: it moves to
+// the front) and the least recently used entry leaves if the cache is full. A
+// hit moves its object to the front. Arrivals are applied in cycle order
+// before each lookup at or after them (a cache's lookups come in cycle order:
+// its port issues them so).
 #pragma once
 #include <cstdint>
 #include <list>
+#include <functional>
 #include <memory>
+#include <queue>
 #include <unordered_map>
 #include <vector>
 
@@ -70,14 +77,19 @@ class ObjectCaches final : public sc_core::sc_module, public MemoryReadIf, publi
   uint64_t dram_bytes() const { return dram_bytes_; }
 
  private:
-  struct Entry {
-    std::list<uint64_t>::iterator order;  ///< its place in the LRU list (front: most recent)
-    uint64_t arrival;                     ///< the cycle its data arrive(d)
+  /// A DRAM read on its way: the object enters the cache at `arrival`.
+  struct Fill {
+    uint64_t arrival;
+    uint64_t seq;  ///< issue order, for arrivals at one cycle
+    uint64_t addr;
+    bool operator>(const Fill& o) const { return arrival != o.arrival ? arrival > o.arrival : seq > o.seq; }
   };
   struct Cache {
     ObjectCacheConfig config;
-    std::list<uint64_t> order;            ///< addresses, most recently looked up first
-    std::unordered_map<uint64_t, Entry> entries;
+    std::list<uint64_t> order;  ///< resident addresses, most recently used first
+    std::unordered_map<uint64_t, std::list<uint64_t>::iterator> entries;  ///< resident objects
+    std::priority_queue<Fill, std::vector<Fill>, std::greater<Fill>> fills;  ///< reads in flight, earliest first
+    std::unordered_map<uint64_t, uint32_t> in_flight;  ///< reads in flight per object
     std::unique_ptr<UnitPipelines> port;
     UnitCounters port_counters;
     ObjectCacheCounters counters;
@@ -85,6 +97,8 @@ class ObjectCaches final : public sc_core::sc_module, public MemoryReadIf, publi
 
   /// The cycle the object's DRAM read arrives (after the core takes the response).
   uint64_t dram_read(uint32_t bytes, uint64_t at, uint64_t now);
+  /// Every fill of `c` arriving at or before `at` enters the cache, in arrival order.
+  static void apply_fills(Cache& c, uint64_t at);
   Cache* cache_of(uint64_t addr);
 
   ObjectCachesConfig config_;
@@ -96,6 +110,7 @@ class ObjectCaches final : public sc_core::sc_module, public MemoryReadIf, publi
   std::unique_ptr<UnitPipelines> responses_;  ///< null: any number a cycle
   UnitCounters response_counters_;
   uint64_t reads_ = 0, bytes_ = 0, uncached_reads_ = 0, dram_reads_ = 0, dram_bytes_ = 0;
+  uint64_t fill_seq_ = 0;
 };
 
 }  // namespace vbsim::hw
