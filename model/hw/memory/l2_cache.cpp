@@ -27,6 +27,9 @@ L2Cache::L2Cache(sc_core::sc_module_name name, const CacheConfig& config, const 
 }
 
 L2Cache::~L2Cache() {
+  // Every payload this cache made: the pool's, and those still out at a memory
+  // target when the run stopped (a target that never answered, an error).
+  for (const auto& [trans, sent] : in_flight_send_cycle_) pool_.push_back(trans);
   for (tlm::tlm_generic_payload* p : pool_) {
     p->set_mm(nullptr);
     delete p;
