@@ -13,7 +13,7 @@ import json
 import os
 import sys
 
-from point_jobs import Point, content_key, file_digest
+from point_jobs import Point, content_key, file_digest, write_json_once
 
 MEMORY_STALLS = ("l1_mshr_full", "l2_mshr_full", "dram_outstanding_full", "dram_bandwidth")
 STALL_CAUSES = ("memory_wait", "box_pipeline_full", "triangle_pipeline_full",
@@ -47,10 +47,7 @@ def arch_point(vbsim, cache, trace, config, method):
     key = point_key(vbsim, trace, config, method)
     os.makedirs(cache, exist_ok=True)
     config_path = os.path.join(cache, key + ".config.json")
-    if not os.path.exists(config_path):
-        with open(config_path + ".part", "w") as f:
-            json.dump(config, f, indent=1, sort_keys=True)
-        os.replace(config_path + ".part", config_path)
+    write_json_once(config_path, config, indent=1, sort_keys=True)
     result = os.path.join(cache, key + ".stats.json")
     command = [vbsim, "replay", trace, "--mode", "cycle", "--config", config_path,
                "--stats", result + ".part", "-q", *method_args(method)]

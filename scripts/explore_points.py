@@ -14,14 +14,13 @@ cycles per ray, Mrays/s at the design's clock, Mrays/J, and the secondary
 rays' error rate with its 95% Wilson interval.
 """
 import glob
-import json
 import math
 import os
 import subprocess
 
 from arch_points import merge, set_path
 from explore_definition import knob_label
-from point_jobs import Point, content_key, file_digest
+from point_jobs import Point, content_key, file_digest, write_json_once
 
 CAMERA_KINDS = ("primary", "camera")
 ERRORS = ("self_hit", "false_hit", "missed")
@@ -96,10 +95,7 @@ def make_point(vbsim, root, work, out_dir, definition, w, m, knobs, tech):
                       tech=file_digest(tech_path))
     config = os.path.join(work, "configs", key + ".json")
     os.makedirs(os.path.dirname(config), exist_ok=True)
-    if not os.path.exists(config):
-        with open(config + ".part", "w") as f:
-            json.dump({"hw": hw}, f)
-        os.replace(config + ".part", config)
+    write_json_once(config, {"hw": hw})
     result = os.path.join(out_dir, "points", key + ".json")
     common = ["--mode", "cycle", "-q", "-m", m["method"], "--tester", m["tester"], "--config", config,
               "--tech", tech_path, "--stats", result + ".part"]

@@ -129,8 +129,8 @@ def sensitivity_cell(method, knob):
     """KNOB's main effect on METHOD's cycles per ray, percent, as the study's report.md tabulates it."""
     import explore_analysis
     rows = [{**r, "cycles_per_ray": float(r["cycles_per_ray"])} for r in study_rows()]
-    knobs = [k for k in rows[0] if k in ("cores", "shader.cores", "source.emission_width", "avoidance.share",
-                                           "avoidance.issue_interval")]
+    columns = list(rows[0])
+    knobs = columns[columns.index("preset") + 1:columns.index("area_mm2")]  # points.csv: the knobs sit between
     return pct(explore_analysis.sensitivity(rows, knobs, "cycles_per_ray")[method][knob])
 
 

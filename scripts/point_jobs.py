@@ -62,6 +62,16 @@ def content_key(**parts):
     return hashlib.sha256(json.dumps(parts, sort_keys=True).encode()).hexdigest()[:20]
 
 
+def write_json_once(path, data, **dump_options):
+    """Writes `data` as JSON to `path` unless it is there (a point's configuration,
+    named by its content key): under a temporary name, renamed when complete."""
+    if os.path.exists(path):
+        return
+    with open(path + ".part", "w") as f:
+        json.dump(data, f, **dump_options)
+    os.replace(path + ".part", path)
+
+
 def expand(command):
     """The command's arguments with every {"glob": PATTERN} replaced by its matches."""
     out = []
