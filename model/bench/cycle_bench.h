@@ -1,5 +1,5 @@
 // Cycle-level speed benchmark: times the cycle-level replay (SystemC-driven
-// engine) and Embree's rtcIntersect1 on the same random rays in one run.
+// engine) and Embree on the same rays (bench_workload.h) in one run.
 // A benchmark, not a test.
 #pragma once
 #include "bench/functional_bench.h"
@@ -17,6 +17,6 @@ struct CycleBenchResult {
 };
 
 CycleBenchResult run_cycle_bench(const Scene& scene, const ReplayOptions& opt, const hw::HwConfig& cfg,
-                                 const BenchParams& p);
+                                 const BenchWorkload& w, const BenchParams& p);
 
 }  // namespace vbsim

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <chrono>
 
-#include "gen/seeded_random.h"
 #include "replay/functional_replayer.h"
 #include "scene/embree_reference.h"
 
@@ -24,6 +23,7 @@ nlohmann::json BenchResult::to_json() const {
           {"vbsim_hits", vbsim_hits},
           {"embree_hits", embree_hits},
           {"same_prim", same_prim},
+          {"disagreements", disagreements.to_json()},
           {"node_fetches_per_ray", node_fetches_per_ray},
           {"box_tests_per_ray", box_tests_per_ray},
           {"triangle_tests_per_ray", triangle_tests_per_ray},
@@ -31,27 +31,10 @@ nlohmann::json BenchResult::to_json() const {
           {"embree_build_s", embree_build_s}};
 }
 
-std::vector<TraceRay> bench_rays(const Scene& scene, int64_t count, uint64_t seed) {
-  SeededRandom rng(seed);
-  const Vec3f lo = scene.bounds.lo, hi = scene.bounds.hi;
-  const Vec3f center = 0.5f * (lo + hi);
-  const float radius = std::max(0.5f * length(hi - lo), 1e-6f);
-  std::vector<TraceRay> rays(static_cast<size_t>(count));
-  for (int64_t i = 0; i < count; ++i) {
-    TraceRay& r = rays[static_cast<size_t>(i)];
-    r.id = i;
-    r.o = center + (2.0f * radius) * rng.unit_vector();
-    const Vec3f target{static_cast<float>(rng.uniform(lo.x, hi.x)), static_cast<float>(rng.uniform(lo.y, hi.y)),
-                       static_cast<float>(rng.uniform(lo.z, hi.z))};
-    r.d = target - r.o;
-  }
-  return rays;
-}
-
-BenchResult run_functional_bench(const Scene& scene, const ReplayOptions& opt, const BenchParams& p) {
+BenchResult run_functional_bench(const Scene& scene, const ReplayOptions& opt, const BenchWorkload& w,
+                                 const BenchParams& p) {
   BenchResult res;
-  const std::vector<TraceRay> rays = bench_rays(scene, p.rays, p.seed);
-  res.rays = p.rays;
+  res.rays = w.size();
 
   auto t0 = Clock::now();
   const Bvh bvh = build_bvh(scene, opt.bvh);
@@ -60,47 +43,53 @@ BenchResult run_functional_bench(const Scene& scene, const ReplayOptions& opt, c
   const EmbreeReference embree(scene, p.embree_accel);
   res.embree_build_s = seconds_since(t0);
 
-  std::vector<int32_t> ours(rays.size()), theirs(rays.size());
+  std::vector<int32_t> ours(w.rays.size()), theirs(w.rays.size());
   double best_vbsim = 1e300, best_embree = 1e300;
   for (int rep = 0; rep < p.repeats; ++rep) {
     FunctionalReplayer replayer(scene, bvh, opt);
-    replayer.set_track_parents(false);
+    replayer.set_track_parents(w.with_parents);
     t0 = Clock::now();
-    for (size_t i = 0; i < rays.size(); ++i) ours[i] = replayer.replay(rays[i]).answer;
+    for (size_t i = 0; i < w.rays.size(); ++i) ours[i] = replayer.replay(w.rays[i]).answer;
     best_vbsim = std::min(best_vbsim, seconds_since(t0));
     const KindStats total = replayer.stats().total();
-    res.node_fetches_per_ray = static_cast<double>(total.traversal.node_visits) / p.rays;
-    res.box_tests_per_ray = static_cast<double>(total.traversal.box_tests) / p.rays;
-    res.triangle_tests_per_ray = static_cast<double>(total.traversal.triangle_tests) / p.rays;
+    res.node_fetches_per_ray = static_cast<double>(total.traversal.node_visits) / res.rays;
+    res.box_tests_per_ray = static_cast<double>(total.traversal.box_tests) / res.rays;
+    res.triangle_tests_per_ray = static_cast<double>(total.traversal.triangle_tests) / res.rays;
 
-    best_embree = std::min(best_embree, time_embree(embree, rays, theirs));
+    best_embree = std::min(best_embree, time_embree(embree, w, theirs));
   }
-  finish_bench(res, best_vbsim, best_embree, ours, theirs);
+  finish_bench(res, best_vbsim, best_embree, scene, bvh, opt, w, ours, theirs);
   return res;
 }
 
-double time_embree(const EmbreeReference& embree, const std::vector<TraceRay>& rays, std::vector<int32_t>& prims) {
-  prims.resize(rays.size());
+double time_embree(const EmbreeReference& embree, const BenchWorkload& w, std::vector<int32_t>& answers) {
+  answers.resize(w.emitted.size());
   const auto t0 = Clock::now();
-  for (size_t i = 0; i < rays.size(); ++i) {
+  for (size_t i = 0; i < w.emitted.size(); ++i) {
+    const Ray& r = w.emitted[i].ray;
+    if (w.any_hit[i]) {
+      answers[i] = embree.occluded(r.o, r.d, r.tmin, r.tmax) ? kEmbreeOccluded : -1;
+      continue;
+    }
     int32_t prim;
     float t, u, v;
-    const TraceRay& r = rays[i];
-    prims[i] = embree.intersect(r.o, r.d, r.tmin, r.tmax, prim, t, u, v) ? prim : -1;
+    answers[i] = embree.intersect(r.o, r.d, r.tmin, r.tmax, prim, t, u, v) ? prim : -1;
   }
   return seconds_since(t0);
 }
 
-void finish_bench(BenchResult& res, double vbsim_s, double embree_s, const std::vector<int32_t>& ours,
+void finish_bench(BenchResult& res, double vbsim_s, double embree_s, const Scene& scene, const Bvh& bvh,
+                  const ReplayOptions& opt, const BenchWorkload& w, const std::vector<int32_t>& ours,
                   const std::vector<int32_t>& theirs) {
   res.vbsim_rays_per_s = res.rays / vbsim_s;
   res.embree_rays_per_s = res.rays / embree_s;
   res.ratio = res.vbsim_rays_per_s / res.embree_rays_per_s;
   for (size_t i = 0; i < ours.size(); ++i) {
     res.vbsim_hits += ours[i] >= 0;
-    res.embree_hits += theirs[i] >= 0;
-    res.same_prim += ours[i] == theirs[i];
+    res.embree_hits += theirs[i] != -1;
+    res.same_prim += bench_answers_agree(ours[i], theirs[i], w.any_hit[i] != 0);
   }
+  res.disagreements = classify_disagreements(scene, bvh, opt, w, ours, theirs);
 }
 
 }  // namespace vbsim

@@ -1,6 +1,8 @@
-// Functional speed benchmark: times vbsim's functional replay and Embree's
-// rtcIntersect1 on the same random rays against the same scene, in one run, on
-// one thread. A benchmark, not a test: it reports, it asserts nothing.
+// Functional speed benchmark: times vbsim's functional replay and Embree on the
+// same rays (random camera-like rays or a captured trace, bench_workload.h)
+// against the same scene, in one run, on one thread. A benchmark, not a test:
+// it reports and names its disagreements with Embree (bench_disagreements.h),
+// it asserts nothing.
 #pragma once
 #include <cstdint>
 #include <string>
@@ -8,6 +10,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "bench/bench_disagreements.h"
+#include "bench/bench_workload.h"
 #include "replay/replay_options.h"
 #include "scene/bvh.h"
 #include "scene/scene.h"
@@ -16,8 +20,6 @@
 namespace vbsim {
 
 struct BenchParams {
-  int64_t rays = 200000;
-  uint64_t seed = 1;
   int repeats = 3;  ///< each side is timed this many times; the best run counts
   /// Embree's triangle acceleration structure (EmbreeReference's tri_accel);
   /// empty: Embree's choice for the host.
@@ -30,8 +32,11 @@ struct BenchResult {
   double embree_rays_per_s = 0;
   double ratio = 0;          ///< vbsim / Embree
   int64_t vbsim_hits = 0;
-  int64_t embree_hits = 0;
-  int64_t same_prim = 0;     ///< rays where both returned the same triangle (or both missed)
+  int64_t embree_hits = 0;   ///< triangles found, and any-hit rays found occluded
+  /// Rays where both agree (bench_answers_agree): the same triangle or both
+  /// none; on any-hit rays occluded alike.
+  int64_t same_prim = 0;
+  DisagreementReport disagreements;  ///< the other rays, each classified by the exact oracle
   double node_fetches_per_ray = 0;    ///< vbsim's traversal work per ray: node fetches (of the tree's width)
   double box_tests_per_ray = 0;       ///< ... box tests
   double triangle_tests_per_ray = 0;
@@ -40,18 +45,19 @@ struct BenchResult {
   nlohmann::json to_json() const;
 };
 
-/// Camera-like rays: origins on a sphere around the scene, aimed at uniform
-/// points inside its bounding box (so most of them hit). Deterministic per seed.
-std::vector<TraceRay> bench_rays(const Scene& scene, int64_t count, uint64_t seed);
-
 class EmbreeReference;
 
-/// Seconds Embree's rtcIntersect1 takes over `rays`; each ray's triangle (or -1) into `prims`.
-double time_embree(const EmbreeReference& embree, const std::vector<TraceRay>& rays, std::vector<int32_t>& prims);
-/// Fills the speeds, ratio and agreement counts of `res` (whose `rays` is set).
-void finish_bench(BenchResult& res, double vbsim_s, double embree_s, const std::vector<int32_t>& ours,
+/// Seconds Embree takes over the workload's emitted rays (rtcIntersect1, or
+/// rtcOccluded1 on any-hit rays); each ray's triangle, -1, or kEmbreeOccluded
+/// into `answers`.
+double time_embree(const EmbreeReference& embree, const BenchWorkload& w, std::vector<int32_t>& answers);
+/// Fills the speeds, ratio, agreement counts and classified disagreements of
+/// `res` (whose `rays` is set).
+void finish_bench(BenchResult& res, double vbsim_s, double embree_s, const Scene& scene, const Bvh& bvh,
+                  const ReplayOptions& opt, const BenchWorkload& w, const std::vector<int32_t>& ours,
                   const std::vector<int32_t>& theirs);
 
-BenchResult run_functional_bench(const Scene& scene, const ReplayOptions& opt, const BenchParams& p);
+BenchResult run_functional_bench(const Scene& scene, const ReplayOptions& opt, const BenchWorkload& w,
+                                 const BenchParams& p);
 
 }  // namespace vbsim

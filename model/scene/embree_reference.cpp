@@ -102,4 +102,24 @@ bool EmbreeReference::intersect(Vec3f o, Vec3f d, float tnear, float tfar, int32
   return true;
 }
 
+bool EmbreeReference::occluded(Vec3f o, Vec3f d, float tnear, float tfar) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRay query;
+  query.org_x = o.x;
+  query.org_y = o.y;
+  query.org_z = o.z;
+  query.tnear = tnear;
+  query.dir_x = d.x;
+  query.dir_y = d.y;
+  query.dir_z = d.z;
+  query.time = 0.0f;
+  query.tfar = tfar;
+  query.mask = 0xffffffffu;
+  query.id = 0;
+  query.flags = 0;
+  rtcOccluded1(scene_, &context, &query);
+  return query.tfar < 0.0f;  // Embree sets tfar to -inf on a hit
+}
+
 }  // namespace vbsim

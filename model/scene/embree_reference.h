@@ -40,6 +40,9 @@ class EmbreeReference {
   /// on a miss returns false and leaves the outputs untouched. Thread-safe.
   bool intersect(Vec3f o, Vec3f d, float tnear, float tfar, int32_t& prim, float& t, float& u,
                  float& v) const;
+  /// Whether any triangle meets o + t d with t in [tnear, tfar] (rtcOccluded1:
+  /// Embree stops at the first it finds). Thread-safe.
+  bool occluded(Vec3f o, Vec3f d, float tnear, float tfar) const;
 
  private:
   std::unique_ptr<EmbreeDevice> device_;  // outlives scene_ (released after it)

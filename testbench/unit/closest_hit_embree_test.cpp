@@ -74,7 +74,7 @@ TEST_CASE("Moller-Trumbore closest hits agree with Embree on the bunny", "[close
 TEST_CASE("Embree's 4-wide tree answers as its default one, and a structure it lacks is an error", "[embree]") {
   const Scene scene = load_scene(std::string(VBSIM_SOURCE_DIR) + "/traces/bunny/bunny.obj");
   const EmbreeReference chosen(scene), four_wide(scene, "bvh4.triangle4v");
-  const std::vector<TraceRay> rays = bench_rays(scene, 4000, 3);
+  const BenchWorkload rays = random_workload(scene, ReplayOptions{}, 4000, 3);
   std::vector<int32_t> a, b;
   time_embree(chosen, rays, a);
   time_embree(four_wide, rays, b);
