@@ -11,12 +11,17 @@ ParentRays collect_parent_rays(const std::vector<TraceRay>& rays) {
   return parents;
 }
 
-OracleAnswer ExpectationFiller::fill(TraceRay& r) {
-  OracleAnswer a = oracle_.answer(intended_ray(r, scene_, parents_.lookup(r.parent)));
+OracleAnswer fill_expect(TraceRay& r, const Oracle& oracle, const Scene& scene, const ParentRay* parent) {
+  OracleAnswer a = oracle.answer(intended_ray(r, scene, parent));
   r.has_expect = true;
   r.expect_prim = a.prim;
   r.has_expect_t = a.prim >= 0;
   r.expect_t = a.prim >= 0 ? a.t : 0.0;
+  return a;
+}
+
+OracleAnswer ExpectationFiller::fill(TraceRay& r) {
+  OracleAnswer a = fill_expect(r, oracle_, scene_, parents_.lookup(r.parent));
   parents_.add(r.id, r.o, r.d);
   return a;
 }

@@ -12,6 +12,12 @@ namespace vbsim {
 /// id -> (o, d) of every ray, the parents intended_ray looks up.
 ParentRays collect_parent_rays(const std::vector<TraceRay>& rays);
 
+/// Sets expect on `ray` from the oracle's answer for it, its parent ray being
+/// `parent` (null when it did not come before it): has_expect, expect_prim and
+/// (for hits) has_expect_t / expect_t, the exact t rounded to nearest double;
+/// a miss gets expect_prim = -1 and no t. Returns the answer.
+OracleAnswer fill_expect(TraceRay& ray, const Oracle& oracle, const Scene& scene, const ParentRay* parent);
+
 /// Streams a trace through the oracle, one ray at a time, in trace order,
 /// keeping the last `parent_window` rays as parents (ParentRayStore).
 class ExpectationFiller {
@@ -19,9 +25,8 @@ class ExpectationFiller {
   ExpectationFiller(const Scene& scene, const Bvh& bvh,
                     int64_t parent_window = ParentRayStore::kDefaultWindow)
       : scene_(scene), oracle_(scene, bvh), parents_(parent_window) {}
-  /// Sets has_expect, expect_prim and (for hits) has_expect_t / expect_t, the
-  /// exact t rounded to nearest double; a miss gets expect_prim = -1 and no t.
-  /// Returns the answer; remembers the ray as a parent for later rays. Throws
+  /// fill_expect with the ray's parent among the rays before it. Returns the
+  /// answer; remembers the ray as a parent for later rays. Throws
   /// ParentWindowError when the ray's parent lies beyond the window.
   OracleAnswer fill(TraceRay& ray);
 

@@ -4,7 +4,7 @@
 #include <mutex>
 
 #include "replay/functional_replayer.h"
-#include "score/parallel_for.h"
+#include "parallel/parallel_for.h"
 #include "trace/checked_trace_source.h"
 #include "trace/trace_file.h"
 

@@ -18,7 +18,7 @@
 
 #include "fit/fit_parameter.h"
 #include "replay/replay_run.h"
-#include "score/trace_blocks.h"
+#include "trace/trace_blocks.h"
 #include "trace/trace_record.h"
 
 namespace vbsim {

@@ -38,6 +38,20 @@ void set_command_line(int argc, const char* const* argv) {
 
 const std::vector<std::string>& command_line() { return stored_command_line(); }
 
+void omit_from_command_line(const std::string& option) {
+  std::vector<std::string>& line = stored_command_line();
+  std::vector<std::string> kept;
+  for (size_t i = 0; i < line.size(); ++i) {
+    if (i > 0 && line[i] == option) {
+      ++i;  // its value
+      continue;
+    }
+    if (i > 0 && line[i].rfind(option + "=", 0) == 0) continue;
+    kept.push_back(line[i]);
+  }
+  line = std::move(kept);
+}
+
 nlohmann::json provenance_json(const std::vector<std::string>& inputs) {
   nlohmann::json files = nlohmann::json::array();
   std::vector<std::string> seen;

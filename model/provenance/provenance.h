@@ -28,6 +28,10 @@ std::string vbsim_version_line();
 /// Records the process's command line (main() calls it once).
 void set_command_line(int argc, const char* const* argv);
 const std::vector<std::string>& command_line();
+/// Drops `OPTION VALUE` and `OPTION=VALUE` from the recorded command line, for
+/// an option that changes no output (--threads): outputs are then
+/// byte-identical, provenance included, whatever the option is set to.
+void omit_from_command_line(const std::string& option);
 
 /// The provenance object for an output made from `inputs` (file paths; empty
 /// ones are skipped, repeated ones listed once). Throws std::runtime_error

@@ -28,6 +28,8 @@ SceneAndBvh load_trace_scene(const TraceHeader& header, const BvhBuildOptions& b
 /// when scored; `reversed` for reverse-shadow rays (their t is along the
 /// reversed ray, from the light).
 std::string hit_json_line(const TraceRay& tr, const RayOutcome& out);
+/// The same line appended to `line` (whose memory a caller can reuse).
+void append_hit_json_line(std::string& line, const TraceRay& tr, const RayOutcome& out);
 
 /// Runs `step` (which replays or emits the ray `source` returned last) and
 /// turns a ParentWindowError into a TraceError at that ray, field 'parent'.
@@ -49,9 +51,13 @@ constexpr uint64_t kProgressRays = 4096;
 /// null) ends the run early; the stats are then marked partial. `progress`
 /// (may be empty) is told how far the replay has come. Checks that every ray
 /// read is counted (ConservationError otherwise).
+/// With `threads` > 1 the rays are read in blocks, their lines parsed and the
+/// rays replayed on that many threads (BlockReplay), and `stop` and `progress`
+/// act between blocks; the statistics (but for wall_s), the hit lines and any
+/// error are those of one thread.
 ReplayStats run_replay(TraceSource& source, const SceneAndBvh& sb, const ReplayOptions& opt,
                        std::ostream* hits, const std::atomic<bool>* stop = nullptr,
-                       const ReplayProgress& progress = {});
+                       const ReplayProgress& progress = {}, int threads = 1);
 
 /// Throws OutputError "PATH: write failed: REASON" when `hits` is in a failed
 /// state (a full disk): a run stops at its first failed write.

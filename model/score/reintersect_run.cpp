@@ -7,7 +7,7 @@
 
 #include "gen/pbrt_reintersect.h"
 #include "replay/functional_replayer.h"
-#include "score/parallel_for.h"
+#include "parallel/parallel_for.h"
 #include "score/score_table.h"
 #include "score/wilson_interval.h"
 

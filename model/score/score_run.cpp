@@ -11,8 +11,8 @@
 #include "replay/ray_conservation.h"
 #include "replay/replay_run.h"
 #include "score/cycle_cost.h"
-#include "score/parallel_for.h"
-#include "score/trace_blocks.h"
+#include "parallel/parallel_for.h"
+#include "trace/trace_blocks.h"
 #include "trace/checked_trace_source.h"
 #include "trace/trace_file.h"
 

@@ -29,6 +29,7 @@ class CheckedTraceSource final : public TraceSource {
   /// (from the inner source) or a consistency error.
   bool next(TraceRay& out) override;
   void set_triangle_count(int32_t n) override { inner_.set_triangle_count(n); }
+  void set_parse_threads(int threads) override { inner_.set_parse_threads(threads); }
   int64_t ids_not_checked() const override { return inner_.ids_not_checked(); }
   const std::string& path() const override { return inner_.path(); }
   TraceError error_at_last_ray(const std::string& field, const std::string& message) const override {

@@ -6,15 +6,16 @@
 #include <fmt/format.h>
 
 #include "io/line_reader.h"
-#include "trace/incomplete_reasons.h"
+#include "trace/text_ray_parse.h"
 #include "trace/trace_header_json.h"
 #include "trace/trace_json_values.h"
 
 namespace vbsim {
 
-using json = nlohmann::json;
-
 namespace {
+
+/// Lines read ahead at a time when parsing on several threads.
+constexpr std::size_t kAheadLines = 4096;
 
 bool is_blank_or_comment(const std::string& line) {
   for (char c : line) {
@@ -22,103 +23,6 @@ bool is_blank_or_comment(const std::string& line) {
     return c == '#';
   }
   return true;
-}
-
-const json* find_field(const json& object, const char* key) {
-  auto it = object.find(key);
-  return it == object.end() ? nullptr : &*it;
-}
-
-const json& required_field(const json& object, const char* key) {
-  const json* v = find_field(object, key);
-  if (!v) throw TraceFieldProblem{key, "missing (required)"};
-  return *v;
-}
-
-/// Reads the fields of one ray object into `out`; type and range of each
-/// field only (the cross-field rules are check_trace_ray's). Throws TraceFieldProblem.
-void parse_trace_ray(const json& object, TraceRay& out) {
-  out = TraceRay{};
-  out.id = json_int64(required_field(object, "id"), "id");
-  if (const json* v = find_field(object, "parent")) out.parent = json_int64(*v, "parent");
-  if (const json* v = find_field(object, "kind")) {
-    std::string name = json_string(*v, "kind");
-    if (!parse_ray_kind(name.c_str(), out.kind))
-      throw TraceFieldProblem{"kind", fmt::format("unknown kind {} (expected primary, reflect, "
-                                                  "refract, diffuse or shadow)",
-                                                  v->dump())};
-  }
-  out.o = json_vec3(required_field(object, "o"), "o");
-  out.d = json_vec3(required_field(object, "d"), "d");
-  if (const json* v = find_field(object, "tmin")) out.tmin = json_float32(*v, "tmin");
-  if (const json* v = find_field(object, "tmax"); v && !v->is_null())
-    out.tmax = json_float32(*v, "tmax");
-  if (const json* v = find_field(object, "parent_prim"))
-    out.parent_prim = json_int32(*v, "parent_prim");
-  if (const json* v = find_field(object, "parent_t")) {
-    out.has_parent_t = true;
-    out.parent_t = json_float32(*v, "parent_t");
-  }
-  if (const json* v = find_field(object, "parent_uv")) {
-    float uv[2];
-    json_float32_array(*v, "parent_uv", uv, 2);
-    out.has_parent_uv = true;
-    out.parent_u = uv[0];
-    out.parent_v = uv[1];
-  }
-  if (const json* v = find_field(object, "parent_ns")) {
-    out.has_parent_ns = true;
-    out.parent_ns = json_vec3(*v, "parent_ns");
-  }
-  if (const json* v = find_field(object, "sign")) {
-    int64_t sign = json_int64(*v, "sign");
-    if (sign != 0 && sign != 1)
-      throw TraceFieldProblem{"sign", fmt::format("must be 0 or 1, got {}", sign)};
-    out.sign = static_cast<int8_t>(sign);
-  }
-  if (const json* v = find_field(object, "expect")) {
-    if (!v->is_object())
-      throw TraceFieldProblem{"expect", fmt::format("expected an object {{\"prim\": k, \"t\": t}}, "
-                                                    "got {}", v->dump())};
-    const json* prim = find_field(*v, "prim");
-    if (!prim) throw TraceFieldProblem{"expect.prim", "missing (required in expect)"};
-    out.has_expect = true;
-    out.expect_prim = json_int32(*prim, "expect.prim");
-    if (const json* t = find_field(*v, "t"); t && !t->is_null()) {
-      out.has_expect_t = true;
-      out.expect_t = json_double(*t, "expect.t");
-    }
-  }
-  if (const json* v = find_field(object, "reference")) {
-    if (!v->is_object())
-      throw TraceFieldProblem{"reference", fmt::format("expected an object {{\"prim\": k, \"t\": t}} or "
-                                                       "{{\"occluded\": true|false}}, got {}", v->dump())};
-    out.has_reference = true;
-    if (const json* occ = find_field(*v, "occluded")) {
-      if (!occ->is_boolean()) throw TraceFieldProblem{"reference.occluded", "expected true or false"};
-      out.reference_prim = occ->get<bool>() ? kReferenceOccluded : -1;
-    } else {
-      const json* prim = find_field(*v, "prim");
-      if (!prim) throw TraceFieldProblem{"reference.prim", "missing (required in reference, unless occluded)"};
-      out.reference_prim = json_int32(*prim, "reference.prim");
-      if (const json* t = find_field(*v, "t"); t && !t->is_null()) {
-        out.has_reference_t = true;
-        out.reference_t = json_float32(*t, "reference.t");
-      }
-    }
-  }
-  if (const json* v = find_field(object, "incomplete")) {
-    if (!v->is_array())
-      throw TraceFieldProblem{"incomplete", fmt::format("expected an array of reasons ({}), got {}",
-                                                        incomplete_reason_names(), v->dump())};
-    for (const json& name : *v) {
-      uint32_t bit = 0;
-      if (!name.is_string() || !parse_incomplete_reason(name.get<std::string>(), bit))
-        throw TraceFieldProblem{"incomplete", fmt::format("unknown reason {} (expected one of {})", name.dump(),
-                                                          incomplete_reason_names())};
-      out.incomplete |= bit;
-    }
-  }
 }
 
 }  // namespace
@@ -129,8 +33,9 @@ TextTraceReader::TextTraceReader(std::string path)
 TextTraceReader::TextTraceReader(std::string path, std::ifstream in)
     : path_(std::move(path)), in_(std::move(in)) {
   if (!in_) throw TraceError::in_file(path_, fmt::format("cannot open: {}", std::strerror(errno)));
-  if (!read_content_line())
+  if (!read_content_line(line_))
     throw TraceError::in_file(path_, "empty: no header line");
+  line_number_ = read_line_;
   try {
     header_ = parse_trace_header(parse_json_object_line(line_), path_);
   } catch (const TraceFieldProblem& p) {
@@ -138,36 +43,93 @@ TextTraceReader::TextTraceReader(std::string path, std::ifstream in)
   }
 }
 
-bool TextTraceReader::read_content_line() {
+bool TextTraceReader::read_content_line(std::string& line) {
   if (stopped_) return false;
-  for (LineRead r; (r = read_bounded_line(in_, line_)) != LineRead::kEnd;) {
-    ++line_number_;
+  for (LineRead r; (r = read_bounded_line(in_, line)) != LineRead::kEnd;) {
+    ++read_line_;
     if (r == LineRead::kTooLong) {
       stopped_ = true;  // the line's rest would be read as more lines
-      line_.clear();
-      throw TraceError::at_line(path_, line_number_, "",
+      line.clear();
+      throw TraceError::at_line(path_, read_line_, "",
                                 fmt::format("longer than {} MiB, the limit of a trace line (docs/trace-format.md)",
                                             kMaxTextLineBytes >> 20));
     }
-    if (!is_blank_or_comment(line_)) return true;
+    if (!is_blank_or_comment(line)) return true;
   }
-  if (in_.bad()) throw TraceError::at_line(path_, line_number_ + 1, "", "read error");
+  if (in_.bad()) throw TraceError::at_line(path_, read_line_ + 1, "", "read error");
   return false;
 }
 
-bool TextTraceReader::next(TraceRay& out) {
-  if (!read_content_line()) return false;
+void TextTraceReader::validate(const TraceRay& out) {
   TraceFieldProblem problem;
-  try {
-    parse_trace_ray(parse_json_object_line(line_), out);
-  } catch (const TraceFieldProblem& p) {
-    throw TraceError::at_line(path_, line_number_, p.field, p.message);
-  }
   if (!validator_.check(out, problem))
     throw TraceError::at_line(path_, line_number_, problem.field, problem.message);
   if (out.has_reference && header_.reference.empty())
     throw TraceError::at_line(path_, line_number_, "reference",
                               "the header names no reference (its \"reference\" field says what gave the answers)");
+}
+
+bool TextTraceReader::next(TraceRay& out) {
+  if (parse_threads_ > 1 || ahead_next_ < ahead_.size() || ahead_error_) return next_ahead(out);
+  bool more = false;
+  try {
+    more = read_content_line(line_);
+  } catch (const TraceError&) {
+    line_number_ = read_line_;
+    throw;
+  }
+  line_number_ = read_line_;
+  if (!more) return false;
+  try {
+    parse_trace_ray_line(line_, out);
+  } catch (const TraceFieldProblem& p) {
+    throw TraceError::at_line(path_, line_number_, p.field, p.message);
+  }
+  validate(out);
+  return true;
+}
+
+void TextTraceReader::read_ahead() {
+  ahead_.clear();
+  ahead_next_ = 0;
+  while (ahead_.size() < kAheadLines) {
+    std::string& line = ahead_.free_line();
+    try {
+      if (!read_content_line(line)) break;
+    } catch (const TraceError&) {  // thrown once the lines before it are handed out
+      ahead_error_ = std::current_exception();
+      ahead_error_line_ = read_line_;
+      break;
+    }
+    ahead_.commit(read_line_);
+  }
+  ahead_.parse(parse_threads_);
+}
+
+bool TextTraceReader::next_ahead(TraceRay& out) {
+  if (ahead_next_ == ahead_.size()) {
+    if (ahead_error_) {
+      const std::exception_ptr error = ahead_error_;
+      ahead_error_ = nullptr;
+      line_number_ = ahead_error_line_;
+      std::rethrow_exception(error);
+    }
+    if (parse_threads_ <= 1) return next(out);
+    read_ahead();
+    if (ahead_.size() == 0) {  // the end, or an error at the block's first line
+      if (ahead_error_) return next_ahead(out);
+      line_number_ = read_line_;
+      return false;
+    }
+  }
+  const std::size_t i = ahead_next_++;
+  line_number_ = ahead_.line_number(i);
+  try {
+    ahead_.take(i, out);
+  } catch (const TraceFieldProblem& p) {
+    throw TraceError::at_line(path_, line_number_, p.field, p.message);
+  }
+  validate(out);
   return true;
 }
 

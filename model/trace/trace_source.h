@@ -24,6 +24,10 @@ class TraceSource {
   /// Scene size, so that rays naming a triangle index >= n (parent_prim,
   /// expect.prim) are rejected from now on; -1 = unknown, skip that check.
   virtual void set_triangle_count(int32_t n) = 0;
+  /// Threads that may parse rays ahead of next() (text traces parse each
+  /// line's JSON; the other forms ignore it). next() returns the same rays and
+  /// throws the same errors, in the same order, whatever the count.
+  virtual void set_parse_threads(int threads) { (void)threads; }
   /// Path of the file, as given when opening it.
   virtual const std::string& path() const = 0;
   /// A TraceError located at the ray last returned by next(), for checks a

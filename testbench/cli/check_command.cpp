@@ -9,6 +9,7 @@
 
 #include "commands.h"
 #include "scene/scene.h"
+#include "threads_option.h"
 #include "trace/checked_trace_source.h"
 #include "trace/incomplete_reasons.h"
 #include "trace/trace_file.h"
@@ -23,6 +24,7 @@ struct CheckArgs {
   int64_t window = kDefaultParentWindow;  // --parent-window, as in replay
   bool strict = false;
   bool quiet = false;  // -q: warnings and the summary only when the check fails; errors always
+  int threads = 1;     // --threads (every core by default)
 };
 
 /// "file:12" or "file: record 11" for a position of `word` ("line"/"record").
@@ -97,7 +99,9 @@ class CheckReport {
 };
 
 int run_check(const CheckArgs& a) {
+  check_threads_option(a.threads);
   std::unique_ptr<TraceSource> source = open_trace(a.trace);  // a bad header is thrown: exit 2
+  source->set_parse_threads(a.threads);  // the same rays and errors, in the same order, as one thread
   CheckReport report(a, a.trace);
   Scene scene;
   TraceConsistencyChecker::Options opt;
@@ -209,6 +213,7 @@ void add_check_command(CLI::App& app) {
                   "print at most N problems of each kind (0: all; all are counted)")
       ->capture_default_str();
   add_parent_window_option(*cmd, args->window, "--parent-window,--window");
+  add_threads_option(*cmd, args->threads, "threads that parse the rays (text traces)");
   cmd->add_flag("--strict", args->strict, "exit 1 on warnings too");
   cmd->add_flag("--quiet,-q", args->quiet, "print nothing when the check passes (errors are always printed)");
   cmd->callback([args] {

@@ -26,6 +26,7 @@
 #include "replay/replay_run.h"
 #include "systemc_messages.h"
 #include "tech_option.h"
+#include "threads_option.h"
 #include "trace/checked_trace_source.h"
 #include "trace/trace_file.h"
 #include "trace/trace_ray_count.h"
@@ -70,6 +71,8 @@ struct ReplayArgs {
   bool quiet = false;
   std::string tech;  // --tech FILE (empty: the shipped default)
   MethodOptions method;
+  int threads = 1;             // --threads (every core by default)
+  bool threads_given = false;  // --threads on the command line
 };
 
 /// One line of the ray log.
@@ -153,6 +156,9 @@ void check_mode_options(const ReplayArgs& a) {
         "options '--preset', '--vcd', '--vcd-start', '--vcd-cycles', '--timeline', '--timeline-start', "
         "'--timeline-cycles', '--trace-scope', '--deps', '--missing-parents', '--ray-log', '--interval-stats', "
         "'--interval', '--warmup-rays' and '--warmup-cycles' need '--mode cycle'");
+  if (a.mode == "cycle" && a.threads_given)
+    throw UsageError("option '--threads' is for the functional replay; the cycle-level model runs on one thread");
+  check_threads_option(a.threads);
   if (a.interval && a.interval_stats.empty()) throw UsageError("option '--interval' needs '--interval-stats FILE'");
   if (a.interval && *a.interval == 0) throw UsageError("option '--interval': must be > 0");
   if (a.warmup_rays && a.warmup_cycles)
@@ -212,7 +218,8 @@ int run_replay_command(const ReplayArgs& a) {
     stats = a.mode == "cycle"
                 ? run_cycle_mode(a, opt, tech, *source, sb, hits, meter, config, hw, table)
                 : run_replay(*source, sb, opt, hits, &g_stop,
-                             meter.shown() ? ReplayProgress([&meter](uint64_t n) { meter.update(n); }) : nullptr);
+                             meter.shown() ? ReplayProgress([&meter](uint64_t n) { meter.update(n); }) : nullptr,
+                             a.threads);
   } catch (const OutputError& e) {
     if (e.path == "hits output") throw OutputError(a.hits, e.message);
     throw;
@@ -311,8 +318,11 @@ void add_replay_command(CLI::App& app) {
   cmd->add_option("--hits", args->hits, "write one JSON line per ray here (after a provenance line)");
   cmd->add_flag("--quiet,-q", args->quiet, "print nothing on success (no progress, no SystemC info messages)");
   add_tech_option(*cmd, args->tech);
+  CLI::Option* threads =
+      add_threads_option(*cmd, args->threads, "functional mode: threads that parse and replay the rays");
   add_method_options(*cmd, args->method, "none");
-  cmd->callback([args, start, cycles, vcd_start, vcd_cycles] {
+  cmd->callback([args, start, cycles, vcd_start, vcd_cycles, threads] {
+    args->threads_given = threads->count() > 0;
     args->timeline_window_given = start->count() > 0 || cycles->count() > 0;
     args->vcd_window_given = vcd_start->count() > 0 || vcd_cycles->count() > 0;
     const int rc = run_replay_command(*args);
@@ -322,6 +332,7 @@ void add_replay_command(CLI::App& app) {
 
 int run_default_job() {
   ReplayArgs a;
+  a.threads = all_cores();
   a.trace = default_trace_path();
   a.method.default_method = "validity-bit";
   const int rc = run_replay_command(a);

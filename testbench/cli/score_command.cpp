@@ -5,10 +5,10 @@
 #include <algorithm>
 #include <fstream>
 #include <sstream>
-#include <thread>
 
 #include "commands.h"
 #include "tech_option.h"
+#include "threads_option.h"
 #include "io/atomic_output_file.h"
 #include "io/output_paths.h"
 #include "exit_codes.h"
@@ -33,7 +33,7 @@ struct ScoreArgs {
   std::vector<std::string> paths;
   std::string methods, testers = "three-half-plane,moller-trumbore";
   std::string out, markdown, regenerate;
-  int threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  int threads = 1;  // --threads (every core by default)
   bool quiet = false;
   int64_t parent_window = ParentRayStore::kDefaultWindow;
   bool score_incomplete = false;
@@ -89,7 +89,7 @@ void write_outputs(const ScoreArgs& a, nlohmann::json score, const std::string& 
 }
 
 void run_score_command(const ScoreArgs& a) {
-  if (a.threads < 1) throw UsageError("option '--threads': must be >= 1");
+  check_threads_option(a.threads);
   if (a.mode != "functional" && a.mode != "cycle")
     throw UsageError(fmt::format("option '--mode': '{}' is not a mode (functional, cycle)", a.mode));
   if (a.mode != "cycle" && (!a.preset.empty() || !a.cycle_testers.empty()))
@@ -176,7 +176,7 @@ void add_score_command(CLI::App& app) {
   cmd->add_option("--accuracy-md", args->markdown, "write the markdown table here (docs/results/accuracy.md)");
   cmd->add_option("--regenerate-with", args->regenerate,
                   "the command the markdown names for regenerating it [this score command]");
-  cmd->add_option("--threads", args->threads, "worker threads of the functional replays")->capture_default_str();
+  add_threads_option(*cmd, args->threads, "worker threads of the functional replays");
   cmd->add_option("--mode", args->mode,
                   "functional, or cycle: also every configuration's cycles per ray and rays per cycle from the "
                   "cycle-level model on the same traces (one replay at a time)")

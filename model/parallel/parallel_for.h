@@ -1,11 +1,16 @@
 // parallel_for: job(i) for every i in [0, n) on up to `threads` threads (the
-// caller's thread included), indices handed out in order; the first exception
-// a job throws stops further jobs and is rethrown after every thread joined.
+// caller's thread included), indices handed out in ascending order. A job that
+// throws stops the handing out of further indices; once every thread has
+// joined, the exception of the lowest index that threw is rethrown. Every
+// index below it was handed out before it and ran to its end, so the error is
+// the one a loop over i in order would have met first, whatever the thread
+// count.
 #pragma once
 #include <algorithm>
 #include <atomic>
 #include <cstddef>
 #include <exception>
+#include <mutex>
 #include <thread>
 #include <vector>
 
@@ -15,13 +20,17 @@ template <class Job>
 void parallel_for(size_t n, int threads, Job job) {
   std::atomic<size_t> next{0};
   std::atomic<bool> failed{false};
+  std::mutex error_mutex;
   std::exception_ptr error;
+  size_t error_index = n;
   auto worker = [&] {
     for (size_t i; !failed.load() && (i = next.fetch_add(1)) < n;) {
       try {
         job(i);
       } catch (...) {
-        if (!failed.exchange(true)) error = std::current_exception();
+        const std::lock_guard<std::mutex> lock(error_mutex);
+        if (i < error_index) error_index = i, error = std::current_exception();
+        failed.store(true);
       }
     }
   };

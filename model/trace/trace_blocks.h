@@ -1,5 +1,6 @@
-// TraceBlocks: reads a trace in blocks of rays so that several configurations
-// can replay the same rays from one parse. Each ray's parent (o, d) is looked
+// TraceBlocks: reads a trace in blocks of rays, so that several configurations
+// can replay the same rays from one parse, or several threads can share the
+// rays of one block (replay, oracle). Each ray's parent (o, d) is looked
 // up when the ray is read, in a ParentRayStore of the last `parent_window`
 // rays, and kept beside the ray: a ray sees its parent only when the parent
 // came before it in the trace, as in a streamed replay, and memory stays
@@ -22,7 +23,10 @@ class TraceBlocks {
 
   /// Reads up to `max_rays` further rays (all when 0) into rays(); false when
   /// none were left. Throws TraceError from the reader, and a TraceError at the
-  /// ray (field 'parent') whose parent lies beyond the parent window.
+  /// ray (field 'parent') whose parent lies beyond the parent window. When it
+  /// throws, rays() and parents_for() hold the block's rays before the one at
+  /// fault, so that a caller can finish them first and report errors in trace
+  /// order.
   bool next_block(size_t max_rays);
   const std::vector<TraceRay>& rays() const { return rays_; }
   /// The parent ray of ray `i` of the block when it came before it, else null.

@@ -1,4 +1,4 @@
-#include "score/trace_blocks.h"
+#include "trace/trace_blocks.h"
 
 namespace vbsim {
 
