@@ -16,9 +16,8 @@ CacheLevel::CacheLevel(const CacheConfig& config)
 void CacheLevel::resolve(uint64_t line, uint64_t fill) {
   if (merge_ || tags_.fill_of(line) == kPendingCycle) tags_.set_fill(line, fill);
   // Unknown fills sort last: the first of them takes `fill` and moves to its place.
-  uint32_t k = 0;
-  while (k < mshrs_ && ring_at(k) != kPendingCycle) ++k;
-  if (k == mshrs_) return;  // no MSHR waits for an unknown fill (not a valid call)
+  if (pending_ == 0) return;  // no MSHR waits for an unknown fill (not a valid call)
+  uint32_t k = mshrs_ - pending_--;
   for (; k > 0 && ring_at(k - 1) > fill; --k) ring_at(k) = ring_at(k - 1);
   ring_at(k) = fill;
 }

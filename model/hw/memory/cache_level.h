@@ -148,12 +148,15 @@ class CacheLevel {
   std::vector<uint64_t> ring_;
   uint32_t head_ = 0;
   uint32_t ring_mask_;
+  uint32_t pending_ = 0;  // MSHRs held until an unknown fill: the ring's last places
   LevelCounters counters_;  // accesses unused: counters() derives it
 };
 
 __attribute__((always_inline)) inline void CacheLevel::hold_mshr(uint64_t fill) {
   // The front MSHR leaves the ring and comes back in, free at `fill`, at its
   // place from the tail (fills arrive nearly in order: few moves).
+  if (__builtin_expect(ring_[head_] == kPendingCycle, 0)) --pending_;  // (callers take a known front)
+  if (__builtin_expect(fill == kPendingCycle, 0)) ++pending_;
   head_ = (head_ + 1) & ring_mask_;
   uint32_t k = mshrs_ - 1;
   for (; k > 0 && ring_at(k - 1) > fill; --k) ring_at(k) = ring_at(k - 1);

@@ -51,7 +51,10 @@ class DramChannel {
   uint32_t latency_, line_bytes_;
   uint64_t ticks_per_cycle_, ticks_per_transfer_;
   uint64_t channel_free_ = 0;      // tick the channel finishes its last transfer
-  std::vector<uint64_t> slot_free_;  // per request slot: cycle it frees
+  // Every request slot's free cycle, sorted, in a ring from head_ (the front,
+  // the slot that frees first; the ring's storage a power of two >= the slots).
+  std::vector<uint64_t> slot_free_;
+  uint32_t slots_, head_ = 0, ring_mask_;
   DramCounters counters_;
 };
 

@@ -58,6 +58,14 @@ __attribute__((always_inline)) inline uint64_t L1Cache::next_level(uint64_t line
   return l2_ ? l2_->read_line_inline<L2Ways>(line, t, core_) : next->read_line(line, t, core_);
 }
 
+uint64_t L1Cache::next_level_any(uint64_t line, uint64_t t) {
+  switch (shape_) {
+    case Shape::L1x4L2x8: return next_level<8>(line, t);
+    case Shape::L1x4L2x16: return next_level<16>(line, t);
+    default: return next_level<0>(line, t);
+  }
+}
+
 // Inlined into both of read_shaped()'s calls (the first line's, the loop's).
 template <uint32_t L1Ways, uint32_t L2Ways>
 __attribute__((always_inline)) inline uint64_t L1Cache::read_line(uint64_t line, uint64_t now, uint32_t slot) {
@@ -148,7 +156,7 @@ void L1Cache::send_due(uint64_t now) {
     if (vcd_) vcd_->add(vcd_misses_, m.cycle, +1);
     miss_sent(m.cycle);
     const uint64_t t = m.cycle + level_.hit_latency();
-    const uint64_t fill = l2_ ? l2_->read_line_inline<0>(m.line, t, core_) : next->read_line(m.line, t, core_);
+    const uint64_t fill = next_level_any(m.line, t);
     if (fill != kPendingCycle) line_filled(m.line, fill);  // answers its waiters (and sends deferred misses)
   }
 }
@@ -169,6 +177,7 @@ void L1Cache::answer(uint32_t slot, uint64_t ready) {
 }
 
 void L1Cache::line_filled(uint64_t line, uint64_t fill) {
+  if (!deferred_.empty() && l2_tags_) l2_tags_->prefetch(deferred_.front().line);  // send_deferred's lookup
   level_.resolve(line, fill);
   miss_filled(fill);
   if (vcd_) vcd_->add(vcd_misses_, fill, -1);  // the miss's +1 went in when it was sent
@@ -191,8 +200,7 @@ void L1Cache::send_deferred() {
     }
     if (vcd_) vcd_->add(vcd_misses_, start, +1);
     miss_sent(start);
-    const uint64_t fill = l2_ ? l2_->read_line_inline<0>(d.line, start + level_.hit_latency(), core_)
-                              : next->read_line(d.line, start + level_.hit_latency(), core_);
+    const uint64_t fill = next_level_any(d.line, start + level_.hit_latency());
     if (fill != kPendingCycle) line_filled(d.line, fill);  // answers its waiters (and sends further deferred misses)
   }
 }

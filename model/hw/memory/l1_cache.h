@@ -114,6 +114,8 @@ class L1Cache final : public sc_core::sc_module, public MemoryReadIf, public Lin
   uint64_t read_line(uint64_t line, uint64_t now, uint32_t slot);
   template <uint32_t L2Ways>
   uint64_t next_level(uint64_t line, uint64_t t);
+  /// next_level() of the L2's shape (the misses sent late).
+  uint64_t next_level_any(uint64_t line, uint64_t t);
 
   // The pending path (approximately timed memory only).
   void wait_for(uint64_t line, uint32_t slot, uint64_t t);

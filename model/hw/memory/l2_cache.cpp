@@ -69,7 +69,7 @@ uint64_t L2Cache::dram_read(uint64_t line, uint64_t send) {
   ++dram_requests_;
   // Loosely timed without a memory clock (a bare memory rig): at once, in call order.
   if (style_ == TlmStyle::LooselyTimed && !memory_clock_) return transport_lt(line, send);
-  sends_.push({send, order_++, line});
+  sends_.push(send, line);
   ++outstanding_;
   if (style_ == TlmStyle::LooselyTimed) memory_clock_->request(send);
   else if (on_request_) on_request_(send);
@@ -77,11 +77,10 @@ uint64_t L2Cache::dram_read(uint64_t line, uint64_t send) {
 }
 
 void L2Cache::release_lt(uint64_t now) {
-  while (!sends_.empty() && sends_.top().cycle <= now) {
-    const Send s = sends_.top();
-    sends_.pop();
-    const uint64_t fill = transport_lt(s.line, s.cycle);
-    responses_.push({fill, order_++, s.line});  // applied at its cycle, as a response would be
+  uint64_t cycle, line;
+  while (sends_.pop_due(now, cycle, line)) {
+    const uint64_t fill = transport_lt(line, cycle);
+    responses_.push(fill, line);  // applied at its cycle, as a response would be
     memory_clock_->request(fill);
   }
 }
@@ -111,16 +110,15 @@ void L2Cache::defer_miss(uint64_t line, uint32_t core, uint64_t t) {
 uint64_t L2Cache::run_ahead_limit(uint64_t now) const {
   uint64_t earliest = kPendingCycle;
   for (const auto& [trans, sent] : in_flight_send_cycle_) earliest = std::min(earliest, sent);
-  if (!sends_.empty()) earliest = std::min(earliest, sends_.top().cycle);
+  earliest = std::min(earliest, sends_.earliest());
   if (earliest == kPendingCycle) return kPendingCycle;
   // A response comes at least lookahead_ cycles after its request.
   return std::max(now, earliest + lookahead_ - 1);
 }
 
 void L2Cache::release_due(uint64_t now) {
-  while (!request_in_progress_ && !sends_.empty() && sends_.top().cycle <= now) {
-    const Send s = sends_.top();
-    sends_.pop();
+  uint64_t cycle, line;
+  while (!request_in_progress_ && sends_.pop_due(now, cycle, line)) {
     tlm::tlm_generic_payload* trans;
     if (pool_.empty()) {
       trans = new tlm::tlm_generic_payload();
@@ -129,7 +127,7 @@ void L2Cache::release_due(uint64_t now) {
       trans = pool_.back();
       pool_.pop_back();
     }
-    prepare(*trans, s.line);
+    prepare(*trans, line);
     trans->acquire();
     in_flight_send_cycle_[trans] = now;
     if (timeline_) timeline_->add(track_, "dram request", now, now + 1, -1);
@@ -185,7 +183,7 @@ void L2Cache::arrived(tlm::tlm_generic_payload& trans, const sc_core::sc_time& d
     if (cycle <= handled_) cycle = handled_ + 1;
   }
   const uint64_t line = trans.get_address() >> line_shift_;
-  responses_.push({cycle, order_++, line});
+  responses_.push(cycle, line);
   dram_read_done(sent, cycle);
   trans.release();
   if (on_response_) on_response_();
@@ -197,11 +195,10 @@ void L2Cache::free(tlm::tlm_generic_payload* trans) {
 }
 
 void L2Cache::apply_responses(uint64_t now) {
-  while (!responses_.empty() && responses_.top().cycle <= now) {
-    const Response r = responses_.top();
-    responses_.pop();
+  uint64_t cycle, line;
+  while (responses_.pop_due(now, cycle, line)) {
     --outstanding_;
-    resolve(r.line, r.cycle);
+    resolve(line, cycle);
   }
 }
 

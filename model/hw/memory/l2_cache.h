@@ -35,7 +35,6 @@
 #include <deque>
 #include <functional>
 #include <map>
-#include <queue>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -49,6 +48,7 @@
 #include "hw/memory/memory_clock.h"
 #include "hw/memory/memory_config.h"
 #include "hw/memory/memory_interfaces.h"
+#include "hw/memory/timed_queue.h"
 #include "hw/observe/stat_provider.h"
 #include "hw/observe/timeline_recorder.h"
 #include "hw/observe/vcd_recorder.h"
@@ -95,9 +95,9 @@ class L2Cache final : public sc_core::sc_module,
   /// Resolves the responses that arrived for cycles at or before `now` (either style).
   void apply_responses(uint64_t now);
   /// The cycle of the next queued send, else kPendingCycle.
-  uint64_t next_send_cycle() const { return sends_.empty() ? kPendingCycle : sends_.top().cycle; }
+  uint64_t next_send_cycle() const { return sends_.earliest(); }
   /// The cycle of the earliest response that arrived but is not applied, else kPendingCycle.
-  uint64_t next_response_cycle() const { return responses_.empty() ? kPendingCycle : responses_.top().cycle; }
+  uint64_t next_response_cycle() const { return responses_.earliest(); }
   /// The last cycle the scheduler may handle now that SystemC time is at
   /// `now`: `now` itself, or further when the target promises a lookahead.
   uint64_t run_ahead_limit(uint64_t now) const;
@@ -158,25 +158,17 @@ class L2Cache final : public sc_core::sc_module,
   std::vector<unsigned char> data_;  // the payload's data buffer (contents not modelled)
 
   // Approximately timed state.
-  struct Send {
-    uint64_t cycle, order, line;
-    bool operator>(const Send& o) const { return cycle != o.cycle ? cycle > o.cycle : order > o.order; }
-  };
-  struct Response {
-    uint64_t cycle, order, line;
-    bool operator>(const Response& o) const { return cycle != o.cycle ? cycle > o.cycle : order > o.order; }
-  };
   struct DeferredMiss {
     uint64_t line, t;
   };
-  std::priority_queue<Send, std::vector<Send>, std::greater<Send>> sends_;
-  std::priority_queue<Response, std::vector<Response>, std::greater<Response>> responses_;
+  TimedQueue<uint64_t> sends_;      // lines to send, by the cycle they leave (then the order found)
+  TimedQueue<uint64_t> responses_;  // lines arrived, by their cycle (then the order they came)
   std::map<tlm::tlm_generic_payload*, uint64_t> in_flight_send_cycle_;  // sent, no response yet
   LineWaiters waiting_;                                                  // cores' L1s waiting for pending lines
   std::deque<DeferredMiss> deferred_;
   std::vector<tlm::tlm_generic_payload*> pool_;
   tlm::tlm_generic_payload* request_in_progress_ = nullptr;  // BEGIN_REQ sent, END_REQ not yet seen
-  uint64_t outstanding_ = 0, order_ = 0, handled_ = 0;
+  uint64_t outstanding_ = 0, handled_ = 0;
   std::function<void()> on_response_;
   std::function<void(uint64_t)> on_request_;
   MemoryClock* memory_clock_ = nullptr;

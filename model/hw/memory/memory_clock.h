@@ -8,28 +8,24 @@
 // step for each cycle asked for, before every event of that cycle, and the
 // step does every module's work due then, in a fixed order (docs/memory-model.md).
 //
-// A min-heap of the cycles asked for (a cycle may be asked for more than once;
-// take() drops them all); at most a few per MSHR are pending at once, so its
-// storage, reserved up front, does not grow in a run.
+// The cycles asked for wait in a calendar queue (hw/memory/timed_queue.h; a
+// cycle may be asked for more than once; take() drops them all): a constant
+// cost per request, and no allocation once it has grown to the most cycles
+// pending at once (a few per MSHR).
 #pragma once
-#include <algorithm>
 #include <cstdint>
-#include <functional>
-#include <vector>
 
+#include "hw/memory/timed_queue.h"
 #include "hw/pending_cycle.h"
 
 namespace vbsim::hw {
 
 class MemoryClock {
  public:
-  explicit MemoryClock(size_t expected_pending = 64) { heap_.reserve(expected_pending); }
-
   /// The memory has work at `cycle` (later than the cycle being handled).
   void request(uint64_t cycle) {
-    heap_.push_back(cycle);
-    std::push_heap(heap_.begin(), heap_.end(), std::greater<uint64_t>());
-    due_ = heap_.front();
+    cycles_.push(cycle, Asked{});
+    due_ = cycles_.earliest();
   }
   /// The earliest cycle asked for, or kPendingCycle (one load: the scheduler asks before every event).
   uint64_t due() const { return due_; }
@@ -37,15 +33,16 @@ class MemoryClock {
   const uint64_t* due_address() const { return &due_; }
   /// Forgets every request at or before `cycle` (its work is being done).
   void take(uint64_t cycle) {
-    while (!heap_.empty() && heap_.front() <= cycle) {
-      std::pop_heap(heap_.begin(), heap_.end(), std::greater<uint64_t>());
-      heap_.pop_back();
+    uint64_t at;
+    Asked asked;
+    while (cycles_.pop_due(cycle, at, asked)) {
     }
-    due_ = heap_.empty() ? kPendingCycle : heap_.front();
+    due_ = cycles_.earliest();
   }
 
  private:
-  std::vector<uint64_t> heap_;
+  struct Asked {};
+  TimedQueue<Asked> cycles_;
   uint64_t due_ = kPendingCycle;
 };
 

@@ -340,7 +340,7 @@ class Engine final : public CycleEngine, private SourceHost {
   const char* node_host_ = bvh_.node_data();  ///< the node records traversal reads (of the tree's width)
   uint32_t source_id_ = slot_count(cfg_);
   uint32_t resumed_id_ = source_id_ + source_.event_ids();
-  MemoryClock no_memory_work_{0};  // the clock without a memory step: never asked for a cycle
+  MemoryClock no_memory_work_;    // the clock without a memory step: never asked for a cycle
   MemoryClock* memory_clock_;
   std::function<void(uint64_t)> memory_step_;
   EventWheel events_{resumed_id_ + source_id_};
