@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 
+#include "parallel/parallel_for.h"
 #include "replay/functional_replayer.h"
 #include "scene/embree_reference.h"
 
@@ -13,7 +14,66 @@ using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
+
+/// Rays a thread takes at a time.
+constexpr size_t kChunkRays = 256;
+
+/// Embree's answer for emitted ray `i` (as time_embree gives it).
+int32_t embree_answer(const EmbreeReference& embree, const BenchWorkload& w, size_t i) {
+  const Ray& r = w.emitted[i].ray;
+  if (w.any_hit[i]) return embree.occluded(r.o, r.d, r.tmin, r.tmax) ? kEmbreeOccluded : -1;
+  int32_t prim;
+  float t, u, v;
+  return embree.intersect(r.o, r.d, r.tmin, r.tmax, prim, t, u, v) ? prim : -1;
+}
+
+/// Seconds `job(i)` takes for every ray on `threads` threads, chunk by chunk.
+template <class Job>
+double time_threads(size_t rays, int threads, Job job) {
+  const size_t chunks = (rays + kChunkRays - 1) / kChunkRays;
+  const auto t0 = Clock::now();
+  parallel_for(chunks, threads, [&](size_t c) {
+    for (size_t i = c * kChunkRays, end = std::min(rays, (c + 1) * kChunkRays); i < end; ++i) job(i);
+  });
+  return seconds_since(t0);
+}
+
+/// Both sides on p.threads threads, best of p.repeats; answers held to one thread's.
+ThreadedBench run_threaded(const Scene& scene, const Bvh& bvh, const ReplayOptions& opt, const BenchWorkload& w,
+                           const EmbreeReference& embree, const BenchParams& p, const std::vector<int32_t>& ours,
+                           const std::vector<int32_t>& theirs) {
+  ThreadedBench t;
+  t.threads = p.threads;
+  const CandidateFilter filter(opt.method);
+  std::vector<int32_t> ours_n(w.rays.size()), theirs_n(w.rays.size());
+  double best_vbsim = 1e300, best_embree = 1e300;
+  for (int rep = 0; rep < p.repeats; ++rep) {
+    best_vbsim = std::min(best_vbsim, time_threads(w.rays.size(), p.threads, [&](size_t i) {
+      KindStats ks;  // counted once, by the one-thread run
+      ours_n[i] = replay_one_ray(w.rays[i], scene, bvh, opt, filter, w.parent(i), ks).answer;
+    }));
+    best_embree = std::min(best_embree, time_threads(w.rays.size(), p.threads,
+                                                     [&](size_t i) { theirs_n[i] = embree_answer(embree, w, i); }));
+  }
+  for (size_t i = 0; i < w.rays.size(); ++i) {
+    t.vbsim_differ += ours_n[i] != ours[i];
+    t.embree_differ += theirs_n[i] != theirs[i];
+  }
+  t.vbsim_rays_per_s = static_cast<double>(w.rays.size()) / best_vbsim;
+  t.embree_rays_per_s = static_cast<double>(w.rays.size()) / best_embree;
+  t.ratio = t.vbsim_rays_per_s / t.embree_rays_per_s;
+  return t;
+}
 }  // namespace
+
+nlohmann::json ThreadedBench::to_json() const {
+  return {{"threads", threads},
+          {"vbsim_rays_per_s", vbsim_rays_per_s},
+          {"embree_rays_per_s", embree_rays_per_s},
+          {"ratio", ratio},
+          {"vbsim_differ_from_one_thread", vbsim_differ},
+          {"embree_differ_from_one_thread", embree_differ}};
+}
 
 nlohmann::json BenchResult::to_json() const {
   return {{"rays", rays},
@@ -28,7 +88,8 @@ nlohmann::json BenchResult::to_json() const {
           {"box_tests_per_ray", box_tests_per_ray},
           {"triangle_tests_per_ray", triangle_tests_per_ray},
           {"bvh_build_s", bvh_build_s},
-          {"embree_build_s", embree_build_s}};
+          {"embree_build_s", embree_build_s},
+          {"threaded", threaded.threads > 1 ? threaded.to_json() : nlohmann::json()}};
 }
 
 BenchResult run_functional_bench(const Scene& scene, const ReplayOptions& opt, const BenchWorkload& w,
@@ -59,22 +120,14 @@ BenchResult run_functional_bench(const Scene& scene, const ReplayOptions& opt, c
     best_embree = std::min(best_embree, time_embree(embree, w, theirs));
   }
   finish_bench(res, best_vbsim, best_embree, scene, bvh, opt, w, ours, theirs);
+  if (p.threads > 1) res.threaded = run_threaded(scene, bvh, opt, w, embree, p, ours, theirs);
   return res;
 }
 
 double time_embree(const EmbreeReference& embree, const BenchWorkload& w, std::vector<int32_t>& answers) {
   answers.resize(w.emitted.size());
   const auto t0 = Clock::now();
-  for (size_t i = 0; i < w.emitted.size(); ++i) {
-    const Ray& r = w.emitted[i].ray;
-    if (w.any_hit[i]) {
-      answers[i] = embree.occluded(r.o, r.d, r.tmin, r.tmax) ? kEmbreeOccluded : -1;
-      continue;
-    }
-    int32_t prim;
-    float t, u, v;
-    answers[i] = embree.intersect(r.o, r.d, r.tmin, r.tmax, prim, t, u, v) ? prim : -1;
-  }
+  for (size_t i = 0; i < w.emitted.size(); ++i) answers[i] = embree_answer(embree, w, i);
   return seconds_since(t0);
 }
 

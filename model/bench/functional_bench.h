@@ -24,6 +24,19 @@ struct BenchParams {
   /// Embree's triangle acceleration structure (EmbreeReference's tri_accel);
   /// empty: Embree's choice for the host.
   std::string embree_accel;
+  /// Functional mode: above 1, both sides are timed again on this many
+  /// threads (rays handed out in chunks, each ray replayed on its own,
+  /// replay_one_ray), and the answers are held to one thread's.
+  int threads = 1;
+};
+
+/// The same rays timed on several threads (BenchParams::threads).
+struct ThreadedBench {
+  int threads = 1;
+  double vbsim_rays_per_s = 0, embree_rays_per_s = 0, ratio = 0;
+  /// Rays whose answer differs from one thread's (vbsim, Embree): 0 unless something is wrong.
+  int64_t vbsim_differ = 0, embree_differ = 0;
+  nlohmann::json to_json() const;
 };
 
 struct BenchResult {
@@ -42,6 +55,7 @@ struct BenchResult {
   double triangle_tests_per_ray = 0;
   double bvh_build_s = 0;
   double embree_build_s = 0;
+  ThreadedBench threaded;  ///< threads 1: not timed on several threads
   nlohmann::json to_json() const;
 };
 

@@ -15,6 +15,7 @@
 #include "exit_codes.h"
 #include "provenance/provenance.h"
 #include "method_options.h"
+#include "threads_option.h"
 #include "replay/replay_run.h"
 #include "replay/replay_stats.h"
 #include "trace/checked_trace_source.h"
@@ -38,6 +39,7 @@ struct BenchArgs {
   std::string preset;  // cycle mode
   std::string embree_accel;
   bool quiet = false;
+  int threads = all_cores();  // functional mode: also timed on this many threads when above 1
   MethodOptions method;
 };
 
@@ -96,6 +98,8 @@ void run_bench(const BenchArgs& a) {
   BenchParams p;
   p.repeats = a.repeats;
   p.embree_accel = a.embree_accel;
+  if (a.threads < 1) throw UsageError("option '--threads': must be >= 1");
+  p.threads = a.mode == "cycle" ? 1 : a.threads;
   nlohmann::json j;
   BenchResult r;
   if (a.mode == "cycle") {
@@ -152,13 +156,25 @@ void run_bench(const BenchArgs& a) {
   }
   fmt::print("  vbsim work per ray: {:.1f} node fetches, {:.1f} box tests, {:.1f} triangle tests\n",
              r.node_fetches_per_ray, r.box_tests_per_ray, r.triangle_tests_per_ray);
+  const ThreadedBench& t = r.threaded;
+  if (t.threads <= 1) return;
+  fmt::print("on {} threads (each ray replayed on its own; best of {}):\n", t.threads, a.repeats);
+  fmt::print("  vbsim   {:>12.0f} rays/s   ({:.2f}x one thread)\n", t.vbsim_rays_per_s,
+             t.vbsim_rays_per_s / r.vbsim_rays_per_s);
+  fmt::print("  embree  {:>12.0f} rays/s   ({:.2f}x one thread)\n", t.embree_rays_per_s,
+             t.embree_rays_per_s / r.embree_rays_per_s);
+  fmt::print("  ratio   {:>12.3f}          (answers as on one thread: {})\n", t.ratio,
+             t.vbsim_differ + t.embree_differ == 0
+                 ? std::string("all")
+                 : fmt::format("{} of vbsim's and {} of Embree's differ", t.vbsim_differ, t.embree_differ));
 }
 
 }  // namespace
 
 void add_bench_command(CLI::App& app) {
   auto args = std::make_shared<BenchArgs>();
-  CLI::App* cmd = app.add_subcommand("bench", "time vbsim against Embree on the same rays (single thread)");
+  CLI::App* cmd = app.add_subcommand(
+      "bench", "time vbsim against Embree on the same rays (one thread; functional mode on every core too)");
   CLI::Option* trace = cmd->add_option("--trace", args->trace,
                                        "time the rays of this trace (.jsonl or .vbt) over its header's scene "
                                        "instead of random rays");
@@ -175,6 +191,9 @@ void add_bench_command(CLI::App& app) {
   cmd->add_option("--embree-accel", args->embree_accel,
                   "Embree's triangle acceleration structure to time against (its tri_accel setting, e.g. "
                   "bvh4.triangle4v for a 4-wide tree) [Embree's choice for the host: bvh8.triangle4v with AVX]");
+  cmd->add_option("--threads", args->threads,
+                  "functional mode: also time both on this many threads (1: one thread only; the cycle-level "
+                  "model runs on one) [every core]");
   add_method_options(*cmd, args->method, "none");
   (void)trace;
   cmd->callback([args, scene, rays, seed] {

@@ -111,3 +111,23 @@ TEST_CASE("bench --trace refuses a missing trace, a bad scene and options for ra
   CHECK_THAT(r.output, Catch::Contains("'--seed'"));
   std::filesystem::remove_all(dir);
 }
+
+TEST_CASE("bench --threads times both sides again on several threads, answers as on one thread", "[cli][bench]") {
+  const auto dir = scratch_dir("bench_threads");
+  // Children start at their parent's ray-equation hit point: each ray replayed
+  // on its own needs its parent's trace ray (without it 157 of these rays
+  // get another answer).
+  const nlohmann::json j = bench_json("--trace " + kTrace + " --hitpoint ray --threads 3", dir / "t.json");
+  const nlohmann::json& t = j["threaded"];
+  REQUIRE(t.is_object());
+  CHECK(t["threads"] == 3);
+  CHECK(t["vbsim_differ_from_one_thread"] == 0);
+  CHECK(t["embree_differ_from_one_thread"] == 0);
+  CHECK(t["vbsim_rays_per_s"].get<double>() > 0);
+  CHECK(t["embree_rays_per_s"].get<double>() > 0);
+  CHECK(bench_json("--trace " + kTrace + " --threads 1", dir / "one.json")["threaded"].is_null());
+  CHECK(bench_json("--trace " + kTrace + " --mode cycle --rays 50", dir / "c.json")["threaded"].is_null());
+  const RunResult bad = run_vbsim("bench --threads 0 --rays 10");
+  CHECK(bad.exit_code == 2);
+  CHECK_THAT(bad.output, Catch::Contains("--threads"));
+}

@@ -130,6 +130,7 @@ void L1Cache::trace_miss(uint64_t start, uint64_t fill) {
 void L1Cache::wait_for(uint64_t line, uint32_t slot, uint64_t t) { waiting_.add(line, slot, t); }
 
 void L1Cache::defer_miss(uint64_t line, uint32_t slot, uint64_t t) {
+  if (l2_tags_) l2_tags_->prefetch(line);  // its L2 lookup comes when an MSHR frees
   deferred_.push_back({line, t});
   wait_for(line, slot, t);
 }

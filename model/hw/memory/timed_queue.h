@@ -55,15 +55,17 @@ class TimedQueue {
     std::push_heap(far_.begin(), far_.end(), std::greater<>());
   }
 
+  /// The payload of the entry pop_due() takes next (the queue is not empty).
+  const Payload& peek() const {
+    return pool_[ring_first() ? head_[ring_min_ & mask_] : far_.front().node].payload;
+  }
+
   /// Takes the earliest entry (by cycle, then push order) when its cycle is at
   /// or before `now`: its cycle and payload into `cycle` and `payload`.
   bool pop_due(uint64_t now, uint64_t& cycle, Payload& payload) {
     if (earliest_ > now) return false;
     uint32_t n;
-    const bool from_ring = ring_min_ != kPendingCycle &&
-                           (far_.empty() || far_.front().cycle > ring_min_ ||
-                            (far_.front().cycle == ring_min_ && far_.front().order > pool_[head_[ring_min_ & mask_]].order));
-    if (from_ring) {
+    if (ring_first()) {
       const size_t b = ring_min_ & mask_;
       n = head_[b];
       head_[b] = pool_[n].next;
@@ -101,6 +103,12 @@ class TimedQueue {
     bool operator>(const Far& o) const { return cycle != o.cycle ? cycle > o.cycle : order > o.order; }
   };
 
+  /// The next entry is the ring's earliest (not the overflow heap's).
+  bool ring_first() const {
+    return ring_min_ != kPendingCycle &&
+           (far_.empty() || far_.front().cycle > ring_min_ ||
+            (far_.front().cycle == ring_min_ && far_.front().order > pool_[head_[ring_min_ & mask_]].order));
+  }
   uint32_t new_node(uint64_t cycle, const Payload& payload) {
     const uint64_t order = order_++;
     if (free_ != kNone) {
