@@ -168,7 +168,7 @@ TEST_CASE("LineWaiters answer what a flat list of waiters answers, nested fills 
   }
 }
 
-TEST_CASE("LineWaiters: merged waiters in arrival order, hits after the fill; one waiter a fill without merging",
+TEST_CASE("LineWaiters: merged waiters in arrival order, hits after the fill, one waiter a fill without merging",
           "[memory][queue]") {
   CacheConfig config{4 * 64, 4, 64, 3, 4};
   CacheLevel merging(config);
