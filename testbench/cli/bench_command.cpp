@@ -40,6 +40,7 @@ struct BenchArgs {
   std::string embree_accel;
   bool quiet = false;
   int threads = all_cores();  // functional mode: also timed on this many threads when above 1
+  bool threads_given = false;
   MethodOptions method;
 };
 
@@ -99,6 +100,8 @@ void run_bench(const BenchArgs& a) {
   p.repeats = a.repeats;
   p.embree_accel = a.embree_accel;
   if (a.threads < 1) throw UsageError("option '--threads': must be >= 1");
+  if (a.threads_given && a.mode == "cycle")
+    throw UsageError("option '--threads': functional mode only (the cycle-level model runs on one thread)");
   p.threads = a.mode == "cycle" ? 1 : a.threads;
   nlohmann::json j;
   BenchResult r;
@@ -191,12 +194,13 @@ void add_bench_command(CLI::App& app) {
   cmd->add_option("--embree-accel", args->embree_accel,
                   "Embree's triangle acceleration structure to time against (its tri_accel setting, e.g. "
                   "bvh4.triangle4v for a 4-wide tree) [Embree's choice for the host: bvh8.triangle4v with AVX]");
-  cmd->add_option("--threads", args->threads,
+  CLI::Option* threads = cmd->add_option("--threads", args->threads,
                   "functional mode: also time both on this many threads (1: one thread only; the cycle-level "
                   "model runs on one) [every core]");
   add_method_options(*cmd, args->method, "none");
   (void)trace;
-  cmd->callback([args, scene, rays, seed] {
+  cmd->callback([args, scene, rays, seed, threads] {
+    args->threads_given = threads->count() > 0;
     args->scene_given = scene->count() > 0;
     args->rays_given = rays->count() > 0;
     args->seed_given = seed->count() > 0;

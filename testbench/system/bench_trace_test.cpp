@@ -130,4 +130,7 @@ TEST_CASE("bench --threads times both sides again on several threads, answers as
   const RunResult bad = run_vbsim("bench --threads 0 --rays 10");
   CHECK(bad.exit_code == 2);
   CHECK_THAT(bad.output, Catch::Contains("--threads"));
+  const RunResult cycle = run_vbsim("bench --mode cycle --threads 2 --rays 10");
+  CHECK(cycle.exit_code == 2);
+  CHECK_THAT(cycle.output, Catch::Contains("functional mode only"));
 }
