@@ -55,7 +55,7 @@ class CacheLevel {
   /// A miss must be followed by fill() of the same line. `Ways`, when not 0, is
   /// the associativity known at compile time (the caller checked it).
   template <uint32_t Ways = 0>
-  Access access(uint64_t line, uint64_t t) {
+  __attribute__((always_inline)) Access access(uint64_t line, uint64_t t) {
     uint64_t fill;
     if (tags_.touch_in<Ways>(tags_.set_of(line), line, fill)) {
       if (t < fill) {
