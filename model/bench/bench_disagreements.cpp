@@ -95,8 +95,7 @@ DisagreementReport classify_disagreements(const Scene& scene, const Bvh& bvh, co
     d.embree = theirs[i];
     const EmittedRay& er = w.emitted[i];
     KindStats scratch;
-    const RayOutcome again =
-        replay_one_ray(w.rays[i], scene, bvh, opt, filter, er.parent ? &*er.parent : nullptr, scratch);
+    const RayOutcome again = replay_one_ray(w.rays[i], scene, bvh, opt, filter, w.parent(i), scratch);
     if (again.rejected > 0 || again.reversed) {
       d.cls = DisagreementClass::Method;
     } else {

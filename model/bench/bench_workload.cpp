@@ -51,12 +51,7 @@ BenchWorkload trace_workload(TraceSource& source, const Scene& scene, const Repl
     w.rays.push_back(tr);
     w.with_parents = w.with_parents || tr.parent >= 0;
     EmittedRay er;
-    replay_at_trace_ray(source, [&] {
-      const ParentRay* parent = parents.lookup(tr.parent);
-      w.parent_of.push_back(parent ? static_cast<int32_t>(w.parent_rays.size()) : -1);
-      if (parent) w.parent_rays.push_back(*parent);
-      er = emit_ray(tr, scene, opt, parent);
-    });
+    replay_at_trace_ray(source, [&] { er = emit_ray(tr, scene, opt, parents.lookup(tr.parent)); });
     parents.add(tr.id, tr.o, tr.d);
     w.any_hit.push_back(search_stops_at_any_hit(opt, tr, er) ? 1 : 0);
     w.emitted.push_back(std::move(er));

@@ -10,7 +10,6 @@
 #include "replay/ray_emission.h"
 #include "replay/replay_options.h"
 #include "scene/scene.h"
-#include "trace/parent_ray_store.h"
 #include "trace/trace_record.h"
 #include "trace/trace_source.h"
 
@@ -24,15 +23,9 @@ struct BenchWorkload {
   /// the two are held to agree on occlusion, not on the triangle.
   std::vector<uint8_t> any_hit;
   bool with_parents = false;  ///< some ray has a parent: the replay keeps parent rays
-  /// Per ray: its parent's trace ray (o, d) as a streamed replay finds it, an
-  /// index into parent_rays, or -1 (none, or a parent the trace does not hold
-  /// before it): what a ray replayed on its own (replay_one_ray) needs.
-  std::vector<int32_t> parent_of;
-  std::vector<ParentRay> parent_rays;
-  /// The parent of ray `i` for replay_one_ray, or null.
-  const ParentRay* parent(size_t i) const {
-    return parent_of.empty() || parent_of[i] < 0 ? nullptr : &parent_rays[static_cast<size_t>(parent_of[i])];
-  }
+  /// Ray `i`'s parent trace ray as a streamed replay finds it (what a ray
+  /// replayed on its own, replay_one_ray, needs), or null.
+  const ParentRay* parent(size_t i) const { return emitted[i].parent ? &*emitted[i].parent : nullptr; }
   int64_t size() const { return static_cast<int64_t>(rays.size()); }
 };
 

@@ -27,14 +27,11 @@ int32_t embree_answer(const EmbreeReference& embree, const BenchWorkload& w, siz
   return embree.intersect(r.o, r.d, r.tmin, r.tmax, prim, t, u, v) ? prim : -1;
 }
 
-/// Seconds `job(i)` takes for every ray on `threads` threads, chunk by chunk.
-template <class Job>
-double time_threads(size_t rays, int threads, Job job) {
-  const size_t chunks = (rays + kChunkRays - 1) / kChunkRays;
+/// Seconds `chunk(begin, end)` takes for every chunk of the rays on `threads` threads.
+template <class Chunk>
+double time_threads(size_t rays, int threads, Chunk chunk) {
   const auto t0 = Clock::now();
-  parallel_for(chunks, threads, [&](size_t c) {
-    for (size_t i = c * kChunkRays, end = std::min(rays, (c + 1) * kChunkRays); i < end; ++i) job(i);
-  });
+  parallel_for_chunks(rays, kChunkRays, threads, [&](size_t, size_t begin, size_t end) { chunk(begin, end); });
   return seconds_since(t0);
 }
 
@@ -48,12 +45,14 @@ ThreadedBench run_threaded(const Scene& scene, const Bvh& bvh, const ReplayOptio
   std::vector<int32_t> ours_n(w.rays.size()), theirs_n(w.rays.size());
   double best_vbsim = 1e300, best_embree = 1e300;
   for (int rep = 0; rep < p.repeats; ++rep) {
-    best_vbsim = std::min(best_vbsim, time_threads(w.rays.size(), p.threads, [&](size_t i) {
+    best_vbsim = std::min(best_vbsim, time_threads(w.rays.size(), p.threads, [&](size_t begin, size_t end) {
       KindStats ks;  // counted once, by the one-thread run
-      ours_n[i] = replay_one_ray(w.rays[i], scene, bvh, opt, filter, w.parent(i), ks).answer;
+      for (size_t i = begin; i < end; ++i)
+        ours_n[i] = replay_one_ray(w.rays[i], scene, bvh, opt, filter, w.parent(i), ks).answer;
     }));
-    best_embree = std::min(best_embree, time_threads(w.rays.size(), p.threads,
-                                                     [&](size_t i) { theirs_n[i] = embree_answer(embree, w, i); }));
+    best_embree = std::min(best_embree, time_threads(w.rays.size(), p.threads, [&](size_t begin, size_t end) {
+      for (size_t i = begin; i < end; ++i) theirs_n[i] = embree_answer(embree, w, i);
+    }));
   }
   for (size_t i = 0; i < w.rays.size(); ++i) {
     t.vbsim_differ += ours_n[i] != ours[i];

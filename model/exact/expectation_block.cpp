@@ -19,11 +19,9 @@ int64_t fill_expect_block(const Oracle& oracle, const Scene& scene, const TraceB
                           std::vector<TraceRay>& rays) {
   rays = blocks.rays();
   std::atomic<int64_t> hits{0};
-  const std::size_t chunks = (rays.size() + kChunkRays - 1) / kChunkRays;
-  parallel_for(chunks, threads, [&](std::size_t c) {
+  parallel_for_chunks(rays.size(), kChunkRays, threads, [&](std::size_t, std::size_t begin, std::size_t end) {
     int64_t chunk_hits = 0;
-    const std::size_t end = std::min(rays.size(), (c + 1) * kChunkRays);
-    for (std::size_t i = c * kChunkRays; i < end; ++i)
+    for (std::size_t i = begin; i < end; ++i)
       chunk_hits += fill_expect(rays[i], oracle, scene, blocks.parents_for(i)).prim >= 0;
     hits += chunk_hits;
   });

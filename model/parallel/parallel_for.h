@@ -42,4 +42,16 @@ void parallel_for(size_t n, int threads, Job job) {
   if (error) std::rethrow_exception(error);
 }
 
+/// Chunks of `chunk_size` consecutive indices that cover [0, n).
+inline size_t chunk_count(size_t n, size_t chunk_size) { return (n + chunk_size - 1) / chunk_size; }
+
+/// job(chunk, begin, end) for every chunk of `chunk_size` consecutive indices
+/// of [0, n) (the last one shorter), the chunks handed out as parallel_for
+/// hands out indices, with its rule for errors.
+template <class Job>
+void parallel_for_chunks(size_t n, size_t chunk_size, int threads, Job job) {
+  parallel_for(chunk_count(n, chunk_size), threads,
+               [&](size_t c) { job(c, c * chunk_size, std::min(n, (c + 1) * chunk_size)); });
+}
+
 }  // namespace vbsim

@@ -21,14 +21,13 @@ BlockReplay::BlockReplay(const Scene& scene, const Bvh& bvh, const ReplayOptions
 
 void BlockReplay::replay(const TraceBlocks& blocks, ReplayStats& stats, std::ostream* hits) {
   const std::vector<TraceRay>& rays = blocks.rays();
-  const std::size_t chunks = (rays.size() + kChunkRays - 1) / kChunkRays;
+  const std::size_t chunks = chunk_count(rays.size(), kChunkRays);
   if (chunks_.size() < chunks) chunks_.resize(chunks);
-  parallel_for(chunks, threads_, [&](std::size_t c) {
+  parallel_for_chunks(rays.size(), kChunkRays, threads_, [&](std::size_t c, std::size_t begin, std::size_t end) {
     Chunk& chunk = chunks_[c];
     chunk.stats = {};
     chunk.hits.clear();
-    const std::size_t end = std::min(rays.size(), (c + 1) * kChunkRays);
-    for (std::size_t i = c * kChunkRays; i < end; ++i) {
+    for (std::size_t i = begin; i < end; ++i) {
       const TraceRay& tr = rays[i];
       const RayOutcome out = replay_one_ray(tr, scene_, bvh_, opt_, filter_, blocks.parents_for(i),
                                             chunk.stats[static_cast<int>(tr.kind)]);

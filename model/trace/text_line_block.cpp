@@ -27,10 +27,8 @@ std::string& TextLineBlock::free_line() {
 void TextLineBlock::commit(int64_t line_number) { numbers_[count_++] = line_number; }
 
 void TextLineBlock::parse(int threads) {
-  const std::size_t jobs = (count_ + kLinesPerJob - 1) / kLinesPerJob;
-  parallel_for(jobs, threads, [this](std::size_t job) {
-    const std::size_t end = std::min(count_, (job + 1) * kLinesPerJob);
-    for (std::size_t i = job * kLinesPerJob; i < end; ++i) {
+  parallel_for_chunks(count_, kLinesPerJob, threads, [this](std::size_t, std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
       errors_[i] = nullptr;
       try {
         parse_trace_ray_line(lines_[i], rays_[i]);

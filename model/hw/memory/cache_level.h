@@ -21,6 +21,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "hw/memory/free_cycle_ring.h"
 #include "hw/memory/lru_cache.h"
 #include "hw/memory/memory_config.h"
 #include "hw/pending_cycle.h"
@@ -94,7 +95,7 @@ class CacheLevel {
   void hold_mshr(uint64_t fill);
   /// The earliest cycle an MSHR is free (kPendingCycle: every MSHR holds a
   /// miss whose fill is not known yet).
-  uint64_t mshr_free_cycle() const { return ring_[head_]; }
+  uint64_t mshr_free_cycle() const { return mshrs_.front(); }
   /// Counts `cycles` more waited for a free MSHR (a miss that waited for one
   /// whose fill was not known when the miss arrived).
   void count_mshr_wait(uint64_t cycles) { counters_.mshr_stall_cycles += cycles; }
@@ -126,7 +127,7 @@ class CacheLevel {
   Access miss(uint64_t t, bool allocated) {
     ++counters_.misses;
     // The earliest free cycle of any MSHR: the front of the sorted ring.
-    const uint64_t free_at = ring_[head_];
+    const uint64_t free_at = mshrs_.front();
     const uint64_t start = free_at > t ? free_at : t;
     // (start kPendingCycle: every MSHR waits for a fill not known yet; the
     // caller takes this back, uncount_pending_wait, and counts the wait once
@@ -134,33 +135,21 @@ class CacheLevel {
     counters_.mshr_stall_cycles += start - t;
     return {Outcome::Miss, 0, start, allocated};
   }
-  /// The free cycle at position k of the ring (0: the front).
-  uint64_t& ring_at(uint32_t k) { return ring_[(head_ + k) & ring_mask_]; }
 
   LruCache tags_;
   uint32_t hit_latency_;
-  uint32_t mshrs_;
   bool merge_;
-  // Every MSHR's free cycle (the fill of the miss it holds, 0 when it never
-  // held one), sorted, in a ring that starts at head_: the front is the
-  // earliest. The ring's storage has a power-of-two size >= mshrs_ (a position
-  // wraps with ring_mask_); the ring is the mshrs_ places from head_.
-  std::vector<uint64_t> ring_;
-  uint32_t head_ = 0;
-  uint32_t ring_mask_;
+  // Every MSHR's free cycle: the fill of the miss it holds (kPendingCycle: not
+  // known yet, so those sort last), 0 when it never held one.
+  FreeCycleRing mshrs_;
   uint32_t pending_ = 0;  // MSHRs held until an unknown fill: the ring's last places
   LevelCounters counters_;  // accesses unused: counters() derives it
 };
 
 __attribute__((always_inline)) inline void CacheLevel::hold_mshr(uint64_t fill) {
-  // The front MSHR leaves the ring and comes back in, free at `fill`, at its
-  // place from the tail (fills arrive nearly in order: few moves).
-  if (__builtin_expect(ring_[head_] == kPendingCycle, 0)) --pending_;  // (callers take a known front)
+  if (__builtin_expect(mshrs_.front() == kPendingCycle, 0)) --pending_;  // (callers take a known front)
   if (__builtin_expect(fill == kPendingCycle, 0)) ++pending_;
-  head_ = (head_ + 1) & ring_mask_;
-  uint32_t k = mshrs_ - 1;
-  for (; k > 0 && ring_at(k - 1) > fill; --k) ring_at(k) = ring_at(k - 1);
-  ring_at(k) = fill;
+  mshrs_.take_front(fill);
 }
 
 }  // namespace vbsim::hw

@@ -36,10 +36,6 @@ uint64_t ceil_div(uint64_t a, uint64_t b) { return (a + b - 1) / b; }
 DramChannel::DramChannel(uint32_t latency, double bytes_per_cycle, uint32_t line_bytes,
                          uint32_t max_outstanding)
     : latency_(latency), line_bytes_(line_bytes), slots_(max_outstanding) {
-  uint32_t bits = 0;
-  while ((uint64_t{1} << bits) < max_outstanding) ++bits;
-  slot_free_.assign(size_t{1} << bits, 0);  // every slot free from cycle 0
-  ring_mask_ = (uint32_t{1} << bits) - 1;
   // transfers per cycle = bytes_per_cycle / line_bytes = ticks_per_cycle / ticks_per_transfer
   const auto [num, den] = nearest_fraction(bytes_per_cycle / line_bytes);
   ticks_per_cycle_ = num;
@@ -47,7 +43,7 @@ DramChannel::DramChannel(uint32_t latency, double bytes_per_cycle, uint32_t line
 }
 
 uint64_t DramChannel::read_line(uint64_t t) {
-  const uint64_t free_at = slot_free_[head_];  // the slot that frees first
+  const uint64_t free_at = slots_.front();  // the slot that frees first
   const uint64_t start = free_at > t ? free_at : t;
   const uint64_t start_ticks = start * ticks_per_cycle_;
   const uint64_t transfer = channel_free_ > start_ticks ? channel_free_ : start_ticks;
@@ -55,13 +51,7 @@ uint64_t DramChannel::read_line(uint64_t t) {
   const uint64_t queued = ceil_div(channel_free_, ticks_per_cycle_) -
                           ceil_div(start_ticks + ticks_per_transfer_, ticks_per_cycle_);
   const uint64_t ready = start + latency_ + queued;
-  // The slot leaves the front and comes back in, free at `ready`, at its place
-  // from the tail (reads finish nearly in order: few moves).
-  head_ = (head_ + 1) & ring_mask_;
-  uint32_t k = slots_ - 1;
-  for (; k > 0 && slot_free_[(head_ + k - 1) & ring_mask_] > ready; --k)
-    slot_free_[(head_ + k) & ring_mask_] = slot_free_[(head_ + k - 1) & ring_mask_];
-  slot_free_[(head_ + k) & ring_mask_] = ready;
+  slots_.take_front(ready);
 
   ++counters_.reads;
   counters_.bytes += line_bytes_;

@@ -23,6 +23,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "hw/memory/free_cycle_ring.h"
+
 namespace vbsim::hw {
 
 struct DramCounters {
@@ -51,10 +53,7 @@ class DramChannel {
   uint32_t latency_, line_bytes_;
   uint64_t ticks_per_cycle_, ticks_per_transfer_;
   uint64_t channel_free_ = 0;      // tick the channel finishes its last transfer
-  // Every request slot's free cycle, sorted, in a ring from head_ (the front,
-  // the slot that frees first; the ring's storage a power of two >= the slots).
-  std::vector<uint64_t> slot_free_;
-  uint32_t slots_, head_ = 0, ring_mask_;
+  FreeCycleRing slots_;  // every request slot's free cycle
   DramCounters counters_;
 };
 

@@ -130,7 +130,6 @@ void L1Cache::trace_miss(uint64_t start, uint64_t fill) {
 void L1Cache::wait_for(uint64_t line, uint32_t slot, uint64_t t) { waiting_.add(line, slot, t); }
 
 void L1Cache::defer_miss(uint64_t line, uint32_t slot, uint64_t t) {
-  if (l2_tags_) l2_tags_->prefetch(line);  // its L2 lookup comes when an MSHR frees
   deferred_.push_back({line, t});
   wait_for(line, slot, t);
 }
@@ -178,7 +177,6 @@ void L1Cache::answer(uint32_t slot, uint64_t ready) {
 }
 
 void L1Cache::line_filled(uint64_t line, uint64_t fill) {
-  if (!deferred_.empty() && l2_tags_) l2_tags_->prefetch(deferred_.front().line);  // send_deferred's lookup
   level_.resolve(line, fill);
   miss_filled(fill);
   if (vcd_) vcd_->add(vcd_misses_, fill, -1);  // the miss's +1 went in when it was sent

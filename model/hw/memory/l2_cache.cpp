@@ -197,7 +197,6 @@ void L2Cache::free(tlm::tlm_generic_payload* trans) {
 void L2Cache::apply_responses(uint64_t now) {
   uint64_t cycle, line;
   while (responses_.pop_due(now, cycle, line)) {
-    if (!responses_.empty()) level_.tags().prefetch(responses_.peek());  // the next one's tag set
     --outstanding_;
     resolve(line, cycle);
   }

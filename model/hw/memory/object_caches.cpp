@@ -64,9 +64,8 @@ uint64_t ObjectCaches::dram_read(uint32_t bytes, uint64_t at, uint64_t now) {
 }
 
 void ObjectCaches::apply_fills(Cache& c, uint64_t at) {
-  while (!c.fills.empty() && c.fills.top().arrival <= at) {
-    const uint64_t addr = c.fills.top().addr;
-    c.fills.pop();
+  uint64_t arrival, addr;
+  while (c.fills.pop_due(at, arrival, addr)) {
     const auto flying = c.in_flight.find(addr);
     if (--flying->second == 0) c.in_flight.erase(flying);
     const auto it = c.entries.find(addr);
@@ -108,7 +107,7 @@ uint64_t ObjectCaches::read(uint64_t addr, uint32_t bytes, uint64_t now, uint32_
     uint32_t& flying = c->in_flight[addr];
     if (flying > 0) ++c->counters.misses_in_flight;  // its earlier read has not arrived: read again, never merged
     ++flying;
-    c->fills.push(Fill{arrival, fill_seq_++, addr});
+    c->fills.push(arrival, addr);
   }
   return arrival + config_.hit_latency;
 }

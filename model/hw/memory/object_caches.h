@@ -27,9 +27,7 @@
 #pragma once
 #include <cstdint>
 #include <list>
-#include <functional>
 #include <memory>
-#include <queue>
 #include <unordered_map>
 #include <vector>
 
@@ -38,6 +36,7 @@
 #include "hw/hw_config.h"
 #include "hw/memory/bvh_address_map.h"
 #include "hw/memory/memory_interfaces.h"
+#include "hw/memory/timed_queue.h"
 #include "hw/observe/stat_provider.h"
 #include "hw/unit_pipelines.h"
 #include "scene/bvh.h"
@@ -77,18 +76,11 @@ class ObjectCaches final : public sc_core::sc_module, public MemoryReadIf, publi
   uint64_t dram_bytes() const { return dram_bytes_; }
 
  private:
-  /// A DRAM read on its way: the object enters the cache at `arrival`.
-  struct Fill {
-    uint64_t arrival;
-    uint64_t seq;  ///< issue order, for arrivals at one cycle
-    uint64_t addr;
-    bool operator>(const Fill& o) const { return arrival != o.arrival ? arrival > o.arrival : seq > o.seq; }
-  };
   struct Cache {
     ObjectCacheConfig config;
     std::list<uint64_t> order;  ///< resident addresses, most recently used first
     std::unordered_map<uint64_t, std::list<uint64_t>::iterator> entries;  ///< resident objects
-    std::priority_queue<Fill, std::vector<Fill>, std::greater<Fill>> fills;  ///< reads in flight, earliest first
+    TimedQueue<uint64_t> fills;  ///< objects read, by arrival cycle (then issue order)
     std::unordered_map<uint64_t, uint32_t> in_flight;  ///< reads in flight per object
     std::unique_ptr<UnitPipelines> port;
     UnitCounters port_counters;
@@ -110,7 +102,6 @@ class ObjectCaches final : public sc_core::sc_module, public MemoryReadIf, publi
   std::unique_ptr<UnitPipelines> responses_;  ///< null: any number a cycle
   UnitCounters response_counters_;
   uint64_t reads_ = 0, bytes_ = 0, uncached_reads_ = 0, dram_reads_ = 0, dram_bytes_ = 0;
-  uint64_t fill_seq_ = 0;
 };
 
 }  // namespace vbsim::hw

@@ -55,11 +55,6 @@ class TimedQueue {
     std::push_heap(far_.begin(), far_.end(), std::greater<>());
   }
 
-  /// The payload of the entry pop_due() takes next (the queue is not empty).
-  const Payload& peek() const {
-    return pool_[ring_first() ? head_[ring_min_ & mask_] : far_.front().node].payload;
-  }
-
   /// Takes the earliest entry (by cycle, then push order) when its cycle is at
   /// or before `now`: its cycle and payload into `cycle` and `payload`.
   bool pop_due(uint64_t now, uint64_t& cycle, Payload& payload) {
