@@ -69,6 +69,9 @@ void run_bench(const BenchArgs& a) {
   if (!a.trace.empty() && a.scene_given)
     throw UsageError("options '--trace' and '--scene' exclude each other: a trace's scene is the one its header names");
   if (!a.trace.empty() && a.seed_given) throw UsageError("option '--seed' is for random rays, not '--trace'");
+  if (a.threads < 1) throw UsageError("option '--threads': must be >= 1");
+  if (a.threads_given && a.mode == "cycle")
+    throw UsageError("option '--threads': functional mode only (the cycle-level model runs on one thread)");
   check_preset_name(a.preset);
   const ReplayOptions opt = resolve_method_options(a.method);
   std::unique_ptr<TraceSource> file;
@@ -99,9 +102,6 @@ void run_bench(const BenchArgs& a) {
   BenchParams p;
   p.repeats = a.repeats;
   p.embree_accel = a.embree_accel;
-  if (a.threads < 1) throw UsageError("option '--threads': must be >= 1");
-  if (a.threads_given && a.mode == "cycle")
-    throw UsageError("option '--threads': functional mode only (the cycle-level model runs on one thread)");
   p.threads = a.mode == "cycle" ? 1 : a.threads;
   nlohmann::json j;
   BenchResult r;
