@@ -63,38 +63,41 @@ void check_coverage(const Scene& scene, const Bvh& bvh) {
   std::vector<uint8_t> node_seen(bvh.nodes.size(), 0), prim_seen(scene.triangles.size(), 0);
   struct Pending {
     BvhRef ref;
-    Bounds3f box;       // the intersection of the boxes the traversal tests before entering `ref`
-    std::string where;  // "root" or "node i child c", for messages
+    Bounds3f box;  // the intersection of the boxes the traversal tests before entering `ref`
+    int64_t parent;  // the node whose child `ref` is (-1: the root), and which child: for messages
+    int child;
+    std::string where() const {
+      return parent < 0 ? "root" : node_name(static_cast<uint32_t>(parent)) + " child " + std::to_string(child);
+    }
   };
-  std::vector<Pending> todo{{bvh.root, bvh.root_bounds, "root"}};
+  std::vector<Pending> todo{{bvh.root, bvh.root_bounds, -1, 0}};
   while (!todo.empty()) {
     const Pending p = todo.back();
     todo.pop_back();
     if (!p.ref.is_leaf()) {
       const uint32_t i = p.ref.index;
-      if (i >= bvh.nodes.size()) bad_bvh(p.where, "node index " + std::to_string(i) + " out of range");
+      if (i >= bvh.nodes.size()) bad_bvh(p.where(), "node index " + std::to_string(i) + " out of range");
       if (node_seen[i]++) bad_bvh(node_name(i), "reached twice");
       const BvhNode& n = bvh.nodes[i];
       for (int c = 0; c < 2; ++c) {
-        const std::string where = node_name(i) + " child " + std::to_string(c);
         const Bounds3f b = n.child_bounds(c);
         Bounds3f inside;  // what a ray must have met of both boxes to reach the child
         for (int a = 0; a < 3; ++a) {
           inside.lo[a] = std::max(p.box.lo[a], b.lo[a]);
           inside.hi[a] = std::min(p.box.hi[a], b.hi[a]);
         }
-        todo.push_back({n.child(c), inside, where});
+        todo.push_back({n.child(c), inside, static_cast<int64_t>(i), c});
       }
       continue;
     }
-    if (size_t(p.ref.index) + p.ref.count > bvh.tris.size()) bad_bvh(p.where, "triangle range out of range");
+    if (size_t(p.ref.index) + p.ref.count > bvh.tris.size()) bad_bvh(p.where(), "triangle range out of range");
     for (uint32_t j = p.ref.index; j < p.ref.index + p.ref.count; ++j) {
       const uint32_t prim = bvh.tris[j].prim;
-      if (prim >= scene.triangles.size()) bad_bvh(p.where, "prim " + std::to_string(prim) + " out of range");
-      if (prim_seen[prim]++) bad_bvh(p.where, "prim " + std::to_string(prim) + " in two leaves");
+      if (prim >= scene.triangles.size()) bad_bvh(p.where(), "prim " + std::to_string(prim) + " out of range");
+      if (prim_seen[prim]++) bad_bvh(p.where(), "prim " + std::to_string(prim) + " in two leaves");
       const Triangle& t = scene.triangles[prim];
       if (!box_contains(p.box, t.v0) || !box_contains(p.box, t.v1) || !box_contains(p.box, t.v2))
-        bad_bvh(p.where, "box, or a box above it, does not enclose prim " + std::to_string(prim));
+        bad_bvh(p.where(), "box, or a box above it, does not enclose prim " + std::to_string(prim));
     }
   }
   for (size_t p = 0; p < prim_seen.size(); ++p)

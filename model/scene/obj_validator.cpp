@@ -12,6 +12,9 @@ namespace vbsim {
 namespace {
 
 constexpr size_t kMaxLineBytes = 1 << 16;
+/// Longest number of a plain file (ObjSummary::plain): far below the word
+/// buffer assimp's OBJ parser copies a number into.
+constexpr size_t kMaxPlainNumberChars = 64;
 
 bool is_digit(char c) { return c >= '0' && c <= '9'; }
 
@@ -39,8 +42,9 @@ bool is_decimal(std::string_view s) {
   return i == s.size();
 }
 
-std::vector<std::string_view> split(std::string_view line) {
-  std::vector<std::string_view> out;
+/// The words of `line` into `out` (cleared first; its room is kept from line to line).
+void split(std::string_view line, std::vector<std::string_view>& out) {
+  out.clear();
   size_t i = 0;
   while (i < line.size()) {
     while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
@@ -49,7 +53,6 @@ std::vector<std::string_view> split(std::string_view line) {
     if (j > i) out.push_back(line.substr(i, j - i));
     i = j;
   }
-  return out;
 }
 
 class ObjChecker {
@@ -66,10 +69,14 @@ class ObjChecker {
     if (!text.empty() && text.back() == '\r') text.remove_suffix(1);
     if (text.find('\0') != std::string_view::npos) fail("a NUL byte: not a text file");
     if (!text.empty() && text.back() == '\\') fail("a line continued with '\\' is not supported");
-    const std::vector<std::string_view> w = split(text);
+    split(text, words_);
+    const std::vector<std::string_view>& w = words_;
     if (w.empty() || w[0][0] == '#') return;
     const std::string_view key = w[0];
     const size_t args = w.size() - 1;
+    if (text[0] == ' ' || text[0] == '\t' || !(key == "v" ? args == 3 : key == "f" ? args == 3 : key == "vn" ||
+                                                   key == "vt" || key == "s"))
+      sum_.plain_statements = false;
     if (key == "v") {
       if (args != 3 && args != 4 && args != 6) fail("'v' takes 3 coordinates (and w, or r g b)");
       numbers(w);
@@ -89,6 +96,7 @@ class ObjChecker {
       for (size_t k = 1; k < w.size(); ++k) reference(w[k], key == "f", form);
       if (key == "f") {
         ++sum_.faces;
+        if (form >= 2) ++sum_.faces_with_normals;
         sum_.triangles += args - 2;
       }
     } else if (key == "g") {
@@ -106,11 +114,13 @@ class ObjChecker {
   const ObjSummary& summary() const { return sum_; }
 
  private:
-  void numbers(const std::vector<std::string_view>& w) const {
-    for (size_t k = 1; k < w.size(); ++k)
+  void numbers(const std::vector<std::string_view>& w) {
+    for (size_t k = 1; k < w.size(); ++k) {
+      if (w[k].size() > kMaxPlainNumberChars) sum_.plain_statements = false;
       if (!is_decimal(w[k]))
         fail(fmt::format("'{}' is not a decimal number{}", w[k],
                          w[k].substr(0, 1) == "." ? fmt::format(" assimp reads (write 0{})", w[k]) : ""));
+    }
   }
 
   /// One index: a non-zero integer within the `count` elements defined so far.
@@ -120,8 +130,9 @@ class ObjChecker {
     if (i == s.size() || s.size() - i > 18) fail(fmt::format("'{}' is not a {} index", s, what));
     for (size_t k = i; k < s.size(); ++k)
       if (!is_digit(s[k])) fail(fmt::format("'{}' is not a {} index", s, what));
-    const long long v = std::strtoll(std::string(s).c_str(), nullptr, 10);
-    const uint64_t magnitude = static_cast<uint64_t>(v < 0 ? -v : v);
+    uint64_t magnitude = 0;  // at most 18 digits: no overflow
+    for (size_t k = i; k < s.size(); ++k) magnitude = magnitude * 10 + static_cast<uint64_t>(s[k] - '0');
+    const long long v = i == 1 ? -static_cast<long long>(magnitude) : static_cast<long long>(magnitude);
     if (v == 0) fail(fmt::format("{} index 0: OBJ indices start at 1", what));
     if (magnitude > count)
       fail(fmt::format("{} index {} names a {} not defined before this line ({} so far)", what, v, what, count));
@@ -152,6 +163,7 @@ class ObjChecker {
   }
 
   const std::string& path_;
+  std::vector<std::string_view> words_;  // the current line's words
   uint64_t line_ = 0;
   uint64_t normals_ = 0, texcoords_ = 0;
   ObjSummary sum_;

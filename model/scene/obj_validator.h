@@ -22,6 +22,15 @@ struct ObjSummary {
   uint64_t vertices = 0;
   uint64_t faces = 0;      ///< `f` statements
   uint64_t triangles = 0;  ///< what the faces give after triangulation (n - 2 per face of n >= 3)
+  uint64_t faces_with_normals = 0;  ///< `f` statements whose references name normals (i//n, i/t/n)
+  /// Whether the file's triangles are numbered as it lists them, with nothing
+  /// for assimp's OBJ importer to group, split or triangulate, so that
+  /// read_plain_obj (obj_plain_reader.h) may read it: every statement is `v`
+  /// with three numbers, `vn`, `vt`, `f` with three references, `s` or a
+  /// comment, starting its line; no number is longer than 64 characters; and
+  /// either every face names normals or none does.
+  bool plain() const { return plain_statements && (faces_with_normals == 0 || faces_with_normals == faces); }
+  bool plain_statements = true;  ///< the statements' part of plain()
 };
 
 /// Validates the OBJ text `bytes`; throws SceneError "scene 'PATH': OBJ line
