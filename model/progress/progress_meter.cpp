@@ -19,6 +19,7 @@ std::string clock_text(double seconds) {
 
 std::string progress_text(const std::string& label, uint64_t done, uint64_t total, const std::string& unit,
                           double elapsed_s) {
+  if (unit.empty()) return fmt::format("{}  {}", label, clock_text(elapsed_s));  // a step that counts nothing
   const double rate = elapsed_s > 0 ? done / elapsed_s : 0.0;
   if (total == 0) return fmt::format("{}  {} {}  {:.0f} {}/s", label, done, unit, rate, unit);
   std::string s = fmt::format("{}  {:5.1f}%  {}/{} {}  {:.0f} {}/s", label, 100.0 * done / total, done, total,
@@ -40,6 +41,14 @@ void ProgressMeter::update(uint64_t done) {
   if (!out_) return;
   const auto now = std::chrono::steady_clock::now();
   if (now - last_draw_ < kRedrawInterval) return;
+  draw(now);
+}
+
+void ProgressMeter::show() {
+  if (out_) draw(std::chrono::steady_clock::now());
+}
+
+void ProgressMeter::draw(std::chrono::steady_clock::time_point now) {
   last_draw_ = now;
   const std::string line =
       progress_text(label_, done_, total_, unit_, std::chrono::duration<double>(now - start_).count());

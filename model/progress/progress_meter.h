@@ -13,7 +13,8 @@ namespace vbsim {
 /// The line for `done` of `total` `unit` after `elapsed_s` seconds, e.g.
 /// "replay  43.2%  432100/1000000 rays  86420 rays/s  ETA 0:07". `total` 0 is
 /// unknown: count and rate only. The ETA is (total - done) / (done / elapsed),
-/// shown once something is done; h:mm:ss from an hour up, else m:ss.
+/// shown once something is done; h:mm:ss from an hour up, else m:ss. An empty
+/// `unit` counts nothing: the label and the time elapsed only.
 std::string progress_text(const std::string& label, uint64_t done, uint64_t total, const std::string& unit,
                           double elapsed_s);
 
@@ -33,6 +34,8 @@ class ProgressMeter {
 
   /// Sets the count done and redraws when a quarter second has passed.
   void update(uint64_t done);
+  /// Draws the line now, whatever the time since the last drawing.
+  void show();
   /// Adds to the count done.
   void add(uint64_t n) { update(done_ + n); }
   void set_total(uint64_t total) { total_ = total; }
@@ -41,6 +44,7 @@ class ProgressMeter {
   bool shown() const { return out_ != nullptr; }
 
  private:
+  void draw(std::chrono::steady_clock::time_point now);
   std::string label_, unit_;
   uint64_t total_ = 0, done_ = 0;
   std::FILE* out_;

@@ -16,10 +16,10 @@
 
 namespace vbsim {
 
-SceneAndBvh load_trace_scene(const TraceHeader& header, const BvhBuildOptions& bvh) {
+SceneAndBvh load_trace_scene(const TraceHeader& header, const BvhBuildOptions& bvh, WorkProgress* progress) {
   SceneAndBvh sb;
-  sb.scene = load_scene(header.scene_path, header.transform);
-  sb.bvh = build_bvh(sb.scene, bvh);
+  sb.scene = load_scene(header.scene_path, header.transform, progress);
+  sb.bvh = build_bvh(sb.scene, bvh, progress);
   return sb;
 }
 

@@ -22,7 +22,9 @@ struct SceneAndBvh {
   Scene scene;
   Bvh bvh;
 };
-SceneAndBvh load_trace_scene(const TraceHeader& header, const BvhBuildOptions& bvh = {});
+/// `progress`, when given, sees the loading and building steps (progress/work_progress.h).
+SceneAndBvh load_trace_scene(const TraceHeader& header, const BvhBuildOptions& bvh = {},
+                             WorkProgress* progress = nullptr);
 
 /// One line of the hits file: id, prim, t, u, v, front, rejected, and verdict
 /// when scored; `reversed` for reverse-shadow rays (their t is along the

@@ -43,6 +43,8 @@
 
 namespace vbsim {
 
+class WorkProgress;
+
 struct alignas(64) BvhNode {
   float box[3][2][2];  ///< box[axis][0 low | 1 high][child]
   uint32_t ref[2];
@@ -193,6 +195,8 @@ struct Bvh {
 /// triangle lanes;
 /// std::invalid_argument when an option is out of range. Every
 /// triangle appears in exactly one leaf; an empty scene gives no nodes and no triangles.
-Bvh build_bvh(const Scene& scene, const BvhBuildOptions& options = {});
+/// `progress`, when given, sees a step "building the BVH" (in triangles, as far
+/// as Embree's builder reports its fraction done).
+Bvh build_bvh(const Scene& scene, const BvhBuildOptions& options = {}, WorkProgress* progress = nullptr);
 
 }  // namespace vbsim

@@ -21,10 +21,12 @@
 #include <cmath>
 #include <algorithm>
 #include <new>
+#include <thread>
 
 #include <embree3/rtcore.h>
 #include <fmt/format.h>
 
+#include "progress/work_progress.h"
 #include "scene/bvh.h"
 #include "scene/bvh_build_common.h"
 #include "scene/bvh_collapse.h"
@@ -56,7 +58,18 @@ struct BuildNode {
 struct BuildContext {
   std::atomic<bool> unexpected_shape{false};  // a node with other than 2 children
   std::atomic<bool> out_of_memory{false};
+  WorkProgress* progress = nullptr;  // told on the building thread only
+  std::thread::id building_thread;
+  uint64_t triangles = 0;
 };
+
+// Embree's progress monitor: the fraction done, as triangles; never cancels.
+bool report_build_progress(void* user, double fraction) {
+  auto* context = static_cast<BuildContext*>(user);
+  if (context->progress && std::this_thread::get_id() == context->building_thread)
+    context->progress->update(static_cast<uint64_t>(fraction * static_cast<double>(context->triangles)));
+  return true;
+}
 
 void* create_node(RTCThreadLocalAllocator alloc, unsigned child_count, void* user) {
   auto* context = static_cast<BuildContext*>(user);
@@ -197,14 +210,14 @@ bool parse_bvh_builder(const std::string& s, BvhBuilder& out) {
 namespace {
 
 /// The tree of the options' builder, every box in float32.
-Bvh build_tree(const Scene& scene, const BvhBuildOptions& options);
+Bvh build_tree(const Scene& scene, const BvhBuildOptions& options, WorkProgress* progress);
 
 }  // namespace
 
-Bvh build_bvh(const Scene& scene, const BvhBuildOptions& options) {
+Bvh build_bvh(const Scene& scene, const BvhBuildOptions& options, WorkProgress* progress) {
   check_options(options);
   if (options.low_precision.enabled) check_bvh_precision(options.low_precision);
-  Bvh bvh = build_tree(scene, options);
+  Bvh bvh = build_tree(scene, options, progress);
   if (options.low_precision.enabled) mark_low_precision(bvh, options.low_precision);
   collapse_bvh(bvh, options.width);
   bvh.lanes.fill(bvh.tris.data(), bvh.tris.size());
@@ -213,11 +226,15 @@ Bvh build_bvh(const Scene& scene, const BvhBuildOptions& options) {
 
 namespace {
 
-Bvh build_tree(const Scene& scene, const BvhBuildOptions& options) {
-  if (options.builder == BvhBuilder::SweepSah) return build_sweep_sah_bvh(scene, options);
+Bvh build_tree(const Scene& scene, const BvhBuildOptions& options, WorkProgress* progress) {
+  if (options.builder == BvhBuilder::SweepSah) {
+    if (progress) progress->begin("building the BVH (sweep SAH)", 0, "");
+    return build_sweep_sah_bvh(scene, options);
+  }
 
   Bvh bvh;
   if (scene.triangles.empty()) return bvh;  // no nodes, no triangles, depth 0
+  if (progress) progress->begin("building the BVH", scene.triangles.size(), "triangles");
 
   std::vector<RTCBuildPrimitive> prims(scene.triangles.size());
   float largest = 0.0f;  // largest |coordinate|
@@ -255,6 +272,12 @@ Bvh build_tree(const Scene& scene, const BvhBuildOptions& options) {
   args.createLeaf = create_leaf;
   args.splitPrimitive = nullptr;
   args.userPtr = &context;
+  if (progress) {
+    context.progress = progress;
+    context.building_thread = std::this_thread::get_id();
+    context.triangles = prims.size();
+    args.buildProgress = report_build_progress;
+  }
 
   auto* root = static_cast<BuildNode*>(rtcBuildBVH(&args));
   try {

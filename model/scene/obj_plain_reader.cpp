@@ -7,6 +7,7 @@
 #include <cstring>
 #include <vector>
 
+#include "progress/work_progress.h"
 #include "scene/scene_builder.h"
 
 namespace vbsim {
@@ -109,14 +110,20 @@ class PlainObjReader {
 }  // namespace
 
 Scene read_plain_obj(const std::string& bytes, const std::string& path, const ObjSummary& summary,
-                     const std::optional<std::array<float, 16>>& transform) {
+                     const std::optional<std::array<float, 16>>& transform, WorkProgress* progress) {
   if (!summary.plain()) throw SceneError(fmt::format("scene '{}': not a plain OBJ file", path));
   SceneBuilder builder(path, transform, summary.faces > 0 && summary.faces_with_normals == summary.faces);
   PlainObjReader reader(path, summary, builder);
   uint64_t number = 0;
   const char* at = bytes.data();
   const char* const stop = bytes.data() + bytes.size();
+  const char* next_report = at;
+  if (progress) progress->begin("reading triangles", megabytes(bytes.size()), "MB");
   while (at < stop) {
+    if (progress && at >= next_report) {
+      progress->update(megabytes(static_cast<size_t>(at - bytes.data())));
+      next_report = at + (size_t{1} << 20);
+    }
     const char* end = static_cast<const char*>(std::memchr(at, '\n', static_cast<size_t>(stop - at)));
     if (end == nullptr) end = stop;
     const char* content_end = end > at && end[-1] == '\r' ? end - 1 : end;

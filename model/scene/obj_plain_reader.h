@@ -18,9 +18,12 @@
 
 namespace vbsim {
 
+class WorkProgress;
+
 /// Precondition: `summary` is validate_obj(bytes, path) and summary.plain().
 /// `transform` as load_scene's. SceneError names the file and line.
+/// `progress`, when given, sees a step "reading triangles" in MB.
 Scene read_plain_obj(const std::string& bytes, const std::string& path, const ObjSummary& summary,
-                     const std::optional<std::array<float, 16>>& transform);
+                     const std::optional<std::array<float, 16>>& transform, WorkProgress* progress = nullptr);
 
 }  // namespace vbsim

@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <vector>
 
+#include "progress/work_progress.h"
 #include "scene/scene.h"
 
 namespace vbsim {
@@ -12,6 +13,8 @@ namespace vbsim {
 namespace {
 
 constexpr size_t kMaxLineBytes = 1 << 16;
+/// Bytes between two progress reports.
+constexpr size_t kReportBytes = size_t{1} << 20;
 /// Longest number of a plain file (ObjSummary::plain): far below the word
 /// buffer assimp's OBJ parser copies a number into.
 constexpr size_t kMaxPlainNumberChars = 64;
@@ -171,11 +174,16 @@ class ObjChecker {
 
 }  // namespace
 
-ObjSummary validate_obj(std::string_view bytes, const std::string& path) {
+ObjSummary validate_obj(std::string_view bytes, const std::string& path, WorkProgress* progress) {
   ObjChecker check(path);
   uint64_t number = 0;
-  size_t at = 0;
+  size_t at = 0, next_report = 0;
+  if (progress) progress->begin("checking", megabytes(bytes.size()), "MB");
   while (at < bytes.size()) {
+    if (progress && at >= next_report) {
+      progress->update(megabytes(at));
+      next_report = at + kReportBytes;
+    }
     size_t end = bytes.find('\n', at);
     if (end == std::string_view::npos) end = bytes.size();
     check.line(bytes.substr(at, end - at), ++number);

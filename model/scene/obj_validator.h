@@ -33,8 +33,10 @@ struct ObjSummary {
   bool plain_statements = true;  ///< the statements' part of plain()
 };
 
+class WorkProgress;
+
 /// Validates the OBJ text `bytes`; throws SceneError "scene 'PATH': OBJ line
-/// N: what is wrong".
-ObjSummary validate_obj(std::string_view bytes, const std::string& path);
+/// N: what is wrong". `progress`, when given, sees a step "checking" in MB.
+ObjSummary validate_obj(std::string_view bytes, const std::string& path, WorkProgress* progress = nullptr);
 
 }  // namespace vbsim

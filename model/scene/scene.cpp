@@ -2,11 +2,6 @@
 
 namespace vbsim {
 
-void Bounds3f::extend(Vec3f p) {
-  lo = {std::fmin(lo.x, p.x), std::fmin(lo.y, p.y), std::fmin(lo.z, p.z)};
-  hi = {std::fmax(hi.x, p.x), std::fmax(hi.y, p.y), std::fmax(hi.z, p.z)};
-}
-
 Vec3f Scene::shading_normal(int32_t prim, float u, float v) const {
   const auto& n = normals[static_cast<size_t>(prim)];
   return (1.0f - u - v) * n[0] + u * n[1] + v * n[2];

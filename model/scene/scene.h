@@ -12,6 +12,8 @@
 
 namespace vbsim {
 
+class WorkProgress;
+
 struct SceneError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
@@ -24,10 +26,30 @@ struct SceneError : std::runtime_error {
 /// which Embree's BVH builder aborted (docs/scene.md).
 constexpr float kMaxSceneCoordinate = 0x1p126f;
 
+/// fminf and fmaxf as this C library computes them (the second argument when
+/// both are equal, so fmin(+0, -0) is -0; the one that is a number when the
+/// other is NaN; the first when both are), written out so that a box grows without
+/// a library call a coordinate (scene_bounds_test.cpp holds them against the
+/// library's).
+inline float fmin_inline(float a, float b) {
+  if (a < b) return a;
+  if (b <= a) return b;
+  return a != a && b == b ? b : a;  // unordered: the one that is a number, else the first
+}
+inline float fmax_inline(float a, float b) {
+  if (a > b) return a;
+  if (b >= a) return b;
+  return a != a && b == b ? b : a;
+}
+
 struct Bounds3f {
   Vec3f lo{INFINITY, INFINITY, INFINITY};
   Vec3f hi{-INFINITY, -INFINITY, -INFINITY};
-  void extend(Vec3f p);
+  /// Grows the box to hold `p`: lo = fmin(lo, p), hi = fmax(hi, p) per axis.
+  void extend(Vec3f p) {
+    lo = {fmin_inline(lo.x, p.x), fmin_inline(lo.y, p.y), fmin_inline(lo.z, p.z)};
+    hi = {fmax_inline(hi.x, p.x), fmax_inline(hi.y, p.y), fmax_inline(hi.z, p.z)};
+  }
 };
 
 struct Scene {
@@ -43,11 +65,14 @@ struct Scene {
   Vec3f shading_normal(int32_t prim, float u, float v) const;
 };
 
-/// Loads a scene with assimp. `transform` (row-major 4x4) is applied to every
+/// Loads a PLY or OBJ scene (docs/scene.md). `transform` (row-major 4x4) is applied to every
 /// vertex in float32 before anything else; normals get its inverse transpose.
 /// Throws SceneError naming the file on any failure (missing, unreadable, no triangles).
+/// `progress`, when given, is told each step (reading, checking, reading
+/// triangles) and how far it is (progress/work_progress.h).
 Scene load_scene(const std::string& path,
-                 const std::optional<std::array<float, 16>>& transform = std::nullopt);
+                 const std::optional<std::array<float, 16>>& transform = std::nullopt,
+                 WorkProgress* progress = nullptr);
 
 /// Builds a scene directly from triangles (tests and generators).
 Scene make_scene(std::vector<Triangle> triangles,

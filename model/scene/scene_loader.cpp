@@ -27,6 +27,7 @@
 
 #include <fmt/format.h>
 
+#include "progress/work_progress.h"
 #include "scene/obj_assimp_reader.h"
 #include "scene/obj_plain_reader.h"
 #include "scene/obj_validator.h"
@@ -42,8 +43,11 @@ namespace {
 /// Largest scene file read (its bytes are held while it is parsed).
 constexpr uintmax_t kMaxSceneBytes = uintmax_t{4} << 30;
 
+/// Bytes read at a time, so that a large file's reading shows its progress.
+constexpr size_t kReadChunkBytes = size_t{32} << 20;
+
 /// The file's bytes; SceneError when it is missing, not a regular file or too large.
-std::string read_scene_bytes(const std::string& path) {
+std::string read_scene_bytes(const std::string& path, WorkProgress* progress) {
   std::error_code ec;
   const auto status = std::filesystem::status(path, ec);
   if (!std::filesystem::exists(status)) throw SceneError(fmt::format("scene '{}': no such file", path));
@@ -54,8 +58,14 @@ std::string read_scene_bytes(const std::string& path) {
     throw SceneError(fmt::format("scene '{}': larger than {} bytes", path, kMaxSceneBytes));
   std::ifstream in(path, std::ios::binary);
   std::string bytes(static_cast<size_t>(size), '\0');
-  if (!in || !in.read(bytes.data(), static_cast<std::streamsize>(size)))
-    throw SceneError(fmt::format("scene '{}': cannot read it", path));
+  if (progress) progress->begin("reading", megabytes(size), "MB");
+  for (size_t at = 0; at < bytes.size(); at += kReadChunkBytes) {
+    const size_t n = std::min(kReadChunkBytes, bytes.size() - at);
+    if (!in || !in.read(bytes.data() + at, static_cast<std::streamsize>(n)))
+      throw SceneError(fmt::format("scene '{}': cannot read it", path));
+    if (progress) progress->update(megabytes(at + n));
+  }
+  if (!in) throw SceneError(fmt::format("scene '{}': cannot read it", path));
   return bytes;
 }
 
@@ -66,7 +76,8 @@ std::string lower_extension(const std::string& path) {
 }
 
 Scene load_ply(const std::string& bytes, const std::string& path,
-               const std::optional<std::array<float, 16>>& transform) {
+               const std::optional<std::array<float, 16>>& transform, WorkProgress* progress) {
+  if (progress) progress->begin("reading PLY", 0, "");
   const PlyMesh mesh = read_ply_mesh(bytes, path);
   SceneBuilder builder(path, transform, !mesh.normals.empty() && !mesh.triangles.empty());
   for (size_t f = 0; f < mesh.triangles.size(); ++f) {
@@ -81,19 +92,21 @@ Scene load_ply(const std::string& bytes, const std::string& path,
 }
 
 Scene load_obj(const std::string& bytes, const std::string& path,
-               const std::optional<std::array<float, 16>>& transform) {
-  const ObjSummary summary = validate_obj(bytes, path);
-  if (summary.plain()) return read_plain_obj(bytes, path, summary, transform);
+               const std::optional<std::array<float, 16>>& transform, WorkProgress* progress) {
+  const ObjSummary summary = validate_obj(bytes, path, progress);
+  if (summary.plain()) return read_plain_obj(bytes, path, summary, transform, progress);
+  if (progress) progress->begin("reading with assimp", 0, "");
   return read_obj_with_assimp(bytes, path, summary, transform);
 }
 
 }  // namespace
 
-Scene load_scene(const std::string& path, const std::optional<std::array<float, 16>>& transform) {
-  const std::string bytes = read_scene_bytes(path);
+Scene load_scene(const std::string& path, const std::optional<std::array<float, 16>>& transform,
+                 WorkProgress* progress) {
+  const std::string bytes = read_scene_bytes(path, progress);
   const std::string ext = lower_extension(path);
-  if (has_ply_magic(bytes) || ext == ".ply") return load_ply(bytes, path, transform);
-  if (ext == ".obj") return load_obj(bytes, path, transform);
+  if (has_ply_magic(bytes) || ext == ".ply") return load_ply(bytes, path, transform, progress);
+  if (ext == ".obj") return load_obj(bytes, path, transform, progress);
   throw SceneError(fmt::format("scene '{}': unsupported format '{}': vbsim reads PLY and OBJ scenes (docs/scene.md)",
                                path, ext.empty() ? "(no extension)" : ext));
 }

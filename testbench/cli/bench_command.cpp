@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <fstream>
 
+#include "progress/work_progress.h"
 #include "bench/cycle_bench.h"
 #include "bench/functional_bench.h"
 #include "commands.h"
@@ -83,9 +84,10 @@ void run_bench(const BenchArgs& a) {
                      {{"option '--json'", a.json}});
   Scene scene;
   BenchWorkload w;
+  MeterWorkProgress loading("scene", ProgressMeter::terminal_or_null(a.quiet));
   if (file) {
     try {
-      scene = load_scene(scene_path, file->header().transform);
+      scene = load_scene(scene_path, file->header().transform, &loading);
     } catch (const SceneError& e) {
       throw SceneError(fmt::format("{}: header: field 'scene': {}", a.trace, e.what()));
     }
@@ -96,9 +98,10 @@ void run_bench(const BenchArgs& a) {
     w = trace_workload(source, scene, opt, a.rays_given ? a.rays : -1);
     if (w.size() == 0) throw std::runtime_error(fmt::format("{}: the trace has no rays to time", a.trace));
   } else {
-    scene = load_scene(scene_path);
+    scene = load_scene(scene_path, std::nullopt, &loading);
     w = random_workload(scene, opt, a.rays, a.seed);
   }
+  loading.finish();
   BenchParams p;
   p.repeats = a.repeats;
   p.embree_accel = a.embree_accel;

@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "commands.h"
+#include "progress/work_progress.h"
 #include "scene/scene.h"
 #include "threads_option.h"
 #include "trace/checked_trace_source.h"
@@ -107,7 +108,8 @@ int run_check(const CheckArgs& a) {
   TraceConsistencyChecker::Options opt;
   opt.window = static_cast<std::size_t>(a.window);
   try {
-    scene = load_scene(source->header().scene_path, source->header().transform);
+    MeterWorkProgress loading("scene", ProgressMeter::terminal_or_null(a.quiet));
+    scene = load_scene(source->header().scene_path, source->header().transform, &loading);
     source->set_triangle_count(scene.size());
     opt.triangles = &scene.triangles;
   } catch (const SceneError& e) {

@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "commands.h"
+#include "progress/work_progress.h"
 #include "io/output_paths.h"
 #include "exit_codes.h"
 #include "provenance/provenance.h"
@@ -60,7 +61,9 @@ void run_convert(const ConvertArgs& a) {
   if (!a.scene_out.empty()) {
     // rtcore-systemc reads a mesh, not vbsim's header: the scene as a replay
     // loads it (with the header's transform), one PLY triangle per triangle id.
-    const Scene scene = load_scene(source.header().scene_path, source.header().transform);
+    MeterWorkProgress loading("scene", ProgressMeter::terminal_or_null(a.quiet));
+    const Scene scene = load_scene(source.header().scene_path, source.header().transform, &loading);
+    loading.finish();
     write_ply_scene(a.scene_out, scene.triangles, {},
                     "vbsim-provenance " + provenance_line({a.in, source.header().scene_path}));
   }

@@ -4,6 +4,7 @@
 #include <chrono>
 
 #include "commands.h"
+#include "progress/work_progress.h"
 #include "io/output_paths.h"
 #include "exact/expectation_block.h"
 #include "exact/expected_answers.h"
@@ -58,7 +59,9 @@ void run_oracle(const OracleArgs& a) {
   check_threads_option(a.threads);
   auto file = open_trace(a.trace);
   check_output_paths({{"trace", a.trace}, {"scene", file->header().scene_path}}, {{"option '--out'", a.out}});
-  const SceneAndBvh sb = load_trace_scene(file->header());
+  MeterWorkProgress loading("scene", ProgressMeter::terminal_or_null(a.quiet));
+  const SceneAndBvh sb = load_trace_scene(file->header(), {}, &loading);
+  loading.finish();
   TraceConsistencyChecker::Options checks;
   checks.triangles = &sb.scene.triangles;
   checks.window = static_cast<std::size_t>(a.parent_window);  // one window for the checks and the oracle

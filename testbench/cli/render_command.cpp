@@ -13,6 +13,7 @@
 #include <memory>
 
 #include "commands.h"
+#include "progress/work_progress.h"
 #include "energy/operation_energy.h"
 #include "hw/hw_config.h"
 #include "render/cycle_render.h"
@@ -128,17 +129,19 @@ int run_render(const RenderArgs& a) {
   std::vector<std::string> inputs = {a.scene, a.method.config};
   std::string trace_scene;  // the scene a trace names, when the input is a trace
   std::optional<std::array<float, 16>> transform;  // and its transform
+  MeterWorkProgress loading("scene", ProgressMeter::terminal_or_null(a.quiet));
   if (is_trace_path(a.scene)) {  // a trace: its scene, transform and light
     const TraceHeader header = open_trace(a.scene)->header();
     trace_scene = header.scene_path;
     inputs.push_back(trace_scene);
-    sb = load_trace_scene(header, opt.bvh);
+    sb = load_trace_scene(header, opt.bvh, &loading);
     transform = header.transform;
     if (header.light) rs.light = {RenderLight::Kind::Point, *header.light};
   } else {
-    sb.scene = load_scene(a.scene);
-    sb.bvh = build_bvh(sb.scene, opt.bvh);
+    sb.scene = load_scene(a.scene, std::nullopt, &loading);
+    sb.bvh = build_bvh(sb.scene, opt.bvh, &loading);
   }
+  loading.finish();
   check_output_paths({{"scene", a.scene}, {"option '--config'", a.method.config},
                       {"scene of the trace", trace_scene}, {"option '--tech'", a.tech}},
                      {{"option '--out'", a.out}, {"option '--errors'", a.errors}, {"option '--stats'", a.stats},

@@ -9,6 +9,7 @@
 #include <memory>
 #include <optional>
 
+#include "progress/work_progress.h"
 #include "hw/cycle_replay.h"
 #include "hw/observe/host_memory_estimate.h"
 #include "hw/observe/trace_scope.h"
@@ -195,7 +196,9 @@ int run_replay_command(const ReplayArgs& a) {
   if (!a.hits.empty()) hits_file = std::make_unique<AtomicOutputFile>(a.hits);
   for (const std::string* later : {&a.timeline, &a.vcd})  // written at the end: creatable now
     if (!later->empty()) AtomicOutputFile(*later).discard();
-  const SceneAndBvh sb = load_trace_scene(file->header(), opt.bvh);
+  MeterWorkProgress loading("scene", ProgressMeter::terminal_or_null(a.quiet));
+  const SceneAndBvh sb = load_trace_scene(file->header(), opt.bvh, &loading);
+  loading.finish();
   // Every ray passes the consistency checks: a child before its parent is an
   // error, the other checks are counted warnings (docs/trace-format.md).
   TraceConsistencyChecker::Options checks;
