@@ -5,6 +5,7 @@ the same bytes. Coordinates are computed in double and rounded to float32 once.
 - layers:    parallel wavy sheets a small gap apart, plus exact coplanar copies
 - far:       a mesh translated 2^k along (1,1,1) in world coordinates
 - instances: copies of a mesh, rotated, scaled and placed, flattened into one
+- floor:     a mesh standing on a thin closed slab (12 triangles)
 """
 import numpy as np
 
@@ -73,6 +74,26 @@ def instances(verts, tris, count, seed):
         vs.append(v @ rot.T * scale + place)
         ts.append(tris)
     return _join(vs, ts)
+
+
+def floor(verts, tris):
+    """Adds a slab under the mesh: a closed box whose top face is the plane of
+    the lowest vertex (y, up in vbsim's camera), twice the mesh's larger
+    horizontal extent wide and a hundredth of its diagonal thick, so that
+    paths bounce between the two and shadows fall on it; a closed mesh stays
+    closed."""
+    v = verts.astype(np.float64)
+    lo, hi = v.min(0), v.max(0)
+    centre = (lo + hi) / 2
+    half = float(max(hi[0] - lo[0], hi[2] - lo[2]))
+    thick = float(np.sqrt(((hi - lo) ** 2).sum())) / 100
+    x0, x1, z0, z1 = centre[0] - half, centre[0] + half, centre[2] - half, centre[2] + half
+    y0, y1 = lo[1] - thick, lo[1]
+    box = np.array([[x, y, z] for x in (x0, x1) for y in (y0, y1) for z in (z0, z1)])  # index 4x + 2y + z
+    faces = np.array([[0, 1, 3], [0, 3, 2], [4, 6, 7], [4, 7, 5],   # x = x0, x = x1
+                      [0, 4, 5], [0, 5, 1], [2, 3, 7], [2, 7, 6],   # y = y0, y = y1 (top, facing +y)
+                      [0, 2, 6], [0, 6, 4], [1, 5, 7], [1, 7, 3]])  # z = z0, z = z1
+    return _join([v, box], [tris, faces])
 
 
 def _join(vs, ts):

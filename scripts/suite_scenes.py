@@ -103,6 +103,8 @@ def _build(entry, by_name, cache, log):
         verts, tris = gen.instances(verts, tris, src["count"], src["seed"])
     if src.get("subdivide"):
         verts, tris = meshes.subdivide(verts, tris, src["subdivide"])
+    if src.get("floor"):
+        verts, tris = gen.floor(verts, tris)
     return verts, tris
 
 

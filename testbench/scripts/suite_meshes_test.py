@@ -67,6 +67,18 @@ class SuiteMeshesTest(unittest.TestCase):
         self.assertEqual(meshes.boundary_edges(t, len(v)), 8 * meshes.boundary_edges(base_t, len(base_v)))
         v2, t2 = gen.instances(base_v, base_t, 8, seed=1)
         self.assertTrue(np.array_equal(v, v2))
+        # the floor: 12 more triangles, a closed slab whose top is the lowest vertex's plane, facing up
+        tetra = np.array([[0, 1, 2], [0, 3, 1], [1, 3, 2], [2, 3, 0]])
+        tv = np.array([[0, 1, 0], [1, 2, 0], [0, 2, 1], [0, 3, 0]], np.float32)
+        v, t = gen.floor(tv, tetra)
+        self.assertEqual(len(t), 16)
+        self.assertEqual(meshes.boundary_edges(t, len(v)), 0)
+        self.assertEqual(float(v[4:, 1].max()), 1.0)
+        top = [f for f in t[4:] if (v[f][:, 1] == 1.0).all()]
+        self.assertEqual(len(top), 2)
+        for f in top:
+            a, b, c = v[f].astype(float)
+            self.assertGreater(np.cross(b - a, c - a)[1], 0)
 
 
 if __name__ == "__main__":
