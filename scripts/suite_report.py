@@ -6,6 +6,7 @@ markdown page. Every figure comes from the rows; nothing is computed twice."""
 import csv
 import json
 import os
+import shutil
 
 from provenance import csv_comment, provenance_comment, script_provenance, stamp_png
 
@@ -80,7 +81,11 @@ def write_all(vbsim, settings, prepared, scene_runs, results, res_dir, page):
     _write_csv(os.path.join(res_dir, "suite.csv"), method_rows(results, presets), columns, prov)
     speeds = [speed_row(r, scene_runs) for r in results]
     _write_csv(os.path.join(res_dir, "suite-speed.csv"), speeds, SPEED_COLUMNS, prov)
-    chart = os.path.join(os.path.dirname(os.path.abspath(page)), "suite.png")
+    page_dir = os.path.dirname(os.path.abspath(page))
+    if page_dir != os.path.abspath(res_dir):  # the CSVs go beside a page kept elsewhere (docs/results/)
+        for name in ("suite.csv", "suite-speed.csv"):
+            shutil.copyfile(os.path.join(res_dir, name), os.path.join(page_dir, name))
+    chart = os.path.join(page_dir, "suite.png")
     drew = _chart(results, settings, chart, prov)
     _page(page, settings, doc, speeds, presets, prov, drew and os.path.basename(chart))
 
