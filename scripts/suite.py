@@ -131,7 +131,7 @@ def measure_type(a, scene, rtype, trace, work):
     result_path = os.path.join(work, f"{rtype}.result-{key}.json")
     if os.path.exists(result_path):
         with open(result_path) as f:
-            return json.load(f)
+            return dict(json.load(f), cached=True)
     kind = "primary" if rtype == "primary" else "secondary"
     res = {"scene": scene, "type": rtype, "kind": kind, "presets": {}, "runs": {}}
     methods = {}
@@ -156,7 +156,7 @@ def measure_type(a, scene, rtype, trace, work):
     with open(result_path + ".partial", "w") as f:
         json.dump(res, f, indent=1)
     os.replace(result_path + ".partial", result_path)
-    return res
+    return dict(res, cached=False)
 
 
 def main(argv=None):
@@ -198,7 +198,8 @@ def main(argv=None):
                 "ao_radius": a.ao_radius, "testers": a.testers, "methods": a.methods or "score's default",
                 "presets": a.presets, "bench_method": a.bench_method, "bench_repeats": a.bench_repeats,
                 "types": a.types, "tier": None if names else a.tier, "scenes": [m["name"] for m in prepared],
-                "wall_s": round(time.monotonic() - started, 1)}
+                "wall_s": round(time.monotonic() - started, 1), "cells": len(results),
+                "cells_measured": sum(not r["cached"] for r in results)}
     page = a.page or os.path.join(res_dir, "suite.md")
     report.write_all(a.vbsim, settings, prepared, scene_runs, results, res_dir, page)
     log(f"suite: {len(results)} (scene, ray type) rows in {settings['wall_s']} s -> {res_dir}, {page}")
