@@ -82,10 +82,11 @@ def write_all(vbsim, settings, prepared, scene_runs, results, res_dir, page):
     speeds = [speed_row(r, scene_runs) for r in results]
     _write_csv(os.path.join(res_dir, "suite-speed.csv"), speeds, SPEED_COLUMNS, prov)
     page_dir = os.path.dirname(os.path.abspath(page))
-    if page_dir != os.path.abspath(res_dir):  # the CSVs go beside a page kept elsewhere (docs/results/)
-        for name in ("suite.csv", "suite-speed.csv"):
-            shutil.copyfile(os.path.join(res_dir, name), os.path.join(page_dir, name))
-    chart = os.path.join(page_dir, "suite.png")
+    stem = os.path.splitext(os.path.basename(page))[0]  # suite.md: suite.csv, suite-speed.csv, suite.png
+    if page_dir != os.path.abspath(res_dir) or stem != "suite":  # the CSVs beside a page kept elsewhere
+        for name, to in (("suite.csv", f"{stem}.csv"), ("suite-speed.csv", f"{stem}-speed.csv")):
+            shutil.copyfile(os.path.join(res_dir, name), os.path.join(page_dir, to))
+    chart = os.path.join(page_dir, f"{stem}.png")
     drew = _chart(results, settings, chart, prov)
     _page(page, settings, doc, speeds, presets, prov, drew and os.path.basename(chart))
 
@@ -130,6 +131,7 @@ def _chart(results, settings, path, prov):
 
 
 def _page(path, settings, doc, speeds, presets, prov, chart):
+    stem = os.path.splitext(os.path.basename(path))[0]
     s = settings
     busy = sum(v["wall_s"] for r in doc["results"] for v in r["runs"].values()) + \
         sum(v["wall_s"] for runs in doc["sources"].values() for v in runs.values())
@@ -194,7 +196,7 @@ def _page(path, settings, doc, speeds, presets, prov, chart):
     L += ["", "## Every method's errors per million rays, 95% Wilson intervals", "",
           "Secondary rays: self hits, false hits and misses against the exact answer; primary rays: camera "
           "rays missed. Per ray type, one column per scene; the full table (counts, cycles, energy and area on "
-          "each preset for every method) is in `suite.csv`."]
+          f"each preset for every method) is in `{stem}.csv` beside this page."]
     for t in types:
         rows_t = [r for r in results if r["type"] == t]
         sc = [r["scene"] for r in rows_t]

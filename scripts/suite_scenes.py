@@ -92,7 +92,11 @@ def _build(entry, by_name, cache, log):
         base_path = prepare(by_name[src["base"]], by_name, cache, log)["ply"]
         verts, tris = meshes.read_ply(base_path)
     if kind == "mesh":
-        verts, tris = meshes.read_mesh(os.path.join(ROOT, src["path"]))
+        path = os.path.join(ROOT, src["path"])
+        if not os.path.exists(path):
+            raise SceneError(f"scene '{entry['name']}': {path} is missing (package {entry['package']}; "
+                             "scripts/setup.sh --suite installs the suite's packages)")
+        verts, tris = meshes.read_mesh(path)
     elif kind == "cgal-data":
         verts, tris = _cgal_member(src["member"])
     elif kind == "layers":
