@@ -20,10 +20,11 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 # git: the revision `vbsim --version` reports; libssl-dev: SHA-256 of the inputs every
 # output records; slurm-wlm and munge: the Slurm backend's test runs a one-node cluster;
 # embree-tools: the path tracer `vbsim capture` is tested on; libmpfr-dev: the narrow box
-# test (rtcore-systemc's low-precision arithmetic) is checked against MPFR.
+# test (rtcore-systemc's low-precision arithmetic) is checked against MPFR; time: the workload
+# suite reads each run's peak memory from /usr/bin/time -v.
 packages=(build-essential cmake pkg-config git libsystemc-dev catch2 libfmt-dev nlohmann-json3-dev
           libembree-dev libassimp-dev libcli11-dev libgmp-dev libmpfr-dev libssl-dev libstb-dev
-          python3-numpy python3-matplotlib slurm-wlm munge embree-tools)
+          python3-numpy python3-matplotlib slurm-wlm munge embree-tools time)
 if [ "${VBSIM_FUZZ:-0}" = 1 ]; then
   packages+=(clang libclang-rt-dev)
 fi
