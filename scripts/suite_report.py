@@ -195,7 +195,7 @@ def _page(path, settings, doc, speeds, presets, prov, chart):
         L += ["", f"![cycles per ray and errors by scene and ray type]({chart})"]
     L += ["", "## Every method's errors per million rays, 95% Wilson intervals", "",
           "Secondary rays: self hits, false hits and misses against the exact answer; primary rays: camera "
-          "rays missed. Per ray type, one column per scene; the full table (counts, cycles, energy and area on "
+          "rays answered wrong (missed or a false hit; a camera ray has no surface to re-hit). Per ray type, one column per scene; the full table (counts, cycles, energy and area on "
           f"each preset for every method) is in `{stem}.csv` beside this page."]
     for t in types:
         rows_t = [r for r in results if r["type"] == t]
