@@ -132,8 +132,18 @@ class SuiteSmallTest(unittest.TestCase):
             if r["type"] != "primary":
                 self.assertEqual(first.get("parent", -1), -1)
                 self.assertGreaterEqual(first["parent_prim"], 0)
-            if r["type"] == "ao":
+            if r["type"] == "ao":  # an occlusion query a tenth of the bounding box's diagonal long
                 self.assertEqual(first["kind"], "shadow")
+                lo, hi = next(s["bounds"] for s in self.doc["scenes"] if s["name"] == r["scene"])
+                diag = sum((h - l) ** 2 for l, h in zip(lo, hi)) ** 0.5
+                length = first["tmax"] * sum(x * x for x in first["d"]) ** 0.5
+                self.assertAlmostEqual(length / diag, 0.1, places=5)
+
+    def test_the_far_scene_lies_far(self):
+        far = next(s for s in self.doc["scenes"] if s["name"] == "far-wuson")
+        near = next(s for s in self.doc["scenes"] if s["name"] == "wuson-15k")
+        for lo_far, lo_near in zip(far["bounds"][0], near["bounds"][0]):
+            self.assertAlmostEqual(lo_far - lo_near, 2.0 ** 16, delta=2.0 ** -6)
 
     def test_page_names_every_scene_and_type(self):
         with open(self.page) as f:
