@@ -2,7 +2,7 @@
 settings returning (float32 vertices, int64 triangles); the same settings give
 the same bytes. Coordinates are computed in double and rounded to float32 once.
 
-- layers:    parallel wavy sheets a small gap apart, plus exact coplanar copies
+- layers:    parallel wavy sheets a small gap apart, plus coincident copies
 - far:       a mesh translated 2^k along (1,1,1) in world coordinates
 - instances: copies of a mesh, rotated, scaled and placed, flattened into one
 - floor:     a mesh standing on a thin closed slab (12 triangles)
@@ -26,9 +26,11 @@ def _sheet(grid, wave):
 
 def layers(sheets, grid, gap, coplanar, wave):
     """`sheets` copies of one wavy sheet, each `gap` above the last (thin
-    layers), then `coplanar` exact copies of the first sheet with reversed
-    winding; every other copy is shifted half a cell in x (overlapping, not
-    identical triangles in the same plane)."""
+    layers), then `coplanar` copies of the first sheet with reversed winding:
+    the even ones exact (every triangle in the plane of one of the first's),
+    the odd ones the same wavy surface sampled half a cell further along x,
+    whose facets cross the first sheet's at small angles (with `wave` 0 they
+    too lie in its plane)."""
     base_v, base_t = _sheet(grid, wave)
     vs, ts = [], []
     for k in range(sheets):
