@@ -22,6 +22,7 @@ import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
+import point_jobs  # noqa: E402
 import suite_measure as measure  # noqa: E402
 import suite_rays as rays  # noqa: E402
 import suite_report as report  # noqa: E402
@@ -54,7 +55,10 @@ def parse_args(argv):
     ap.add_argument("--out", default=os.path.join(scenes.ROOT, "build", "suite"), help="work directory [build/suite]")
     ap.add_argument("--page", help="write the markdown page here [OUT/results/suite.md]")
     ap.add_argument("--vbsim", default=os.path.join(scenes.ROOT, "build", "vbsim"))
+    point_jobs.add_backend_arguments(ap)
+    ap.set_defaults(jobs=1)  # one cell at a time here: the speeds are measured alone
     a = ap.parse_args(argv)
+    point_jobs.check_backend_arguments(ap, a)
     preset = SMALL if a.small else DEFAULT
     for key, value in preset.items():
         if getattr(a, key, None) is None:
@@ -123,40 +127,20 @@ def make_type_traces(a, entry, meta, work):
     return out, sources
 
 
-def measure_type(a, scene, rtype, trace, work):
-    """Every method scored and timed on each preset; speed against Embree."""
-    settings = {"methods": a.methods, "testers": a.testers, "presets": a.presets, "bench": a.bench_method,
-                "repeats": a.bench_repeats, "no_bench": a.no_bench}
+def cell_point(a, scene, rtype, trace, work):
+    """The (scene, ray type) cell as a point of scripts/point_jobs.py: suite_cell.py
+    writes its figures to a result file named by the measuring settings."""
+    settings = {"vbsim": a.vbsim, "methods": a.methods, "testers": a.testers, "presets": a.presets,
+                "bench_method": a.bench_method, "bench_repeats": a.bench_repeats, "no_bench": a.no_bench}
     key = hashlib.sha256(json.dumps(settings, sort_keys=True).encode()).hexdigest()[:10]
-    result_path = os.path.join(work, f"{rtype}.result-{key}.json")
-    if os.path.exists(result_path):
-        with open(result_path) as f:
-            return dict(json.load(f), cached=True)
-    kind = "primary" if rtype == "primary" else "secondary"
-    res = {"scene": scene, "type": rtype, "kind": kind, "presets": {}, "runs": {}}
-    methods = {}
-    for preset in a.presets:
-        log(f"suite: {scene} {rtype}: score, {preset} preset")
-        info, table = measure.score(a.vbsim, trace["trace"], preset, a.methods, a.testers,
-                                    os.path.join(work, f"{rtype}.score-{preset}.json"),
-                                    os.path.join(work, f"{rtype}.score-{preset}.log"))
-        res["runs"][f"score-{preset}"] = info
-        for row in measure.score_rows(table, kind):
-            m = methods.setdefault((row["method"], row["tester"]), {k: row[k] for k in (
-                "method", "tester", "kind", "rays", "errors", "self_hit", "false_hit", "missed", "rate", "lower", "upper")})
-            if "cycles_per_ray" in row:
-                m[preset] = {k: row[k] for k in ("cycles_per_ray", "energy_per_ray_pj", "chip_mm2")}
-    res["methods"] = list(methods.values())
-    if not a.no_bench:
-        for mode in ("functional", "cycle"):
-            log(f"suite: {scene} {rtype}: bench, {mode}")
-            res["runs"][f"bench-{mode}"] = measure.bench(
-                a.vbsim, trace["trace"], mode, a.bench_method, a.bench_repeats,
-                os.path.join(work, f"{rtype}.bench-{mode}.json"), os.path.join(work, f"{rtype}.bench-{mode}.log"))
-    with open(result_path + ".partial", "w") as f:
-        json.dump(res, f, indent=1)
-    os.replace(result_path + ".partial", result_path)
-    return dict(res, cached=False)
+    settings_path = os.path.join(work, f"cell-settings-{key}.json")
+    if not os.path.exists(settings_path):
+        with open(settings_path, "w") as f:
+            json.dump(settings, f, indent=1)
+    result = os.path.join(work, f"{rtype}.result-{key}.json")
+    command = [sys.executable, os.path.join(HERE, "suite_cell.py"), settings_path, scene, rtype, trace, work,
+               result + ".part"]
+    return point_jobs.Point(f"{scene}/{rtype}", [command], result)
 
 
 def main(argv=None):
@@ -180,8 +164,8 @@ def main(argv=None):
         return 0
     if not os.path.exists(a.vbsim):
         sys.exit(f"suite: no vbsim binary at {a.vbsim} (build it, or give --vbsim)")
-    results, scene_runs = [], {}
-    for meta in prepared:
+    cells, scene_runs = [], {}
+    for meta in prepared:  # the sources run here, one scene after another; the cells as points
         work = os.path.join(a.out, "runs", meta["name"] + "-" + run_key(a, meta))
         os.makedirs(work, exist_ok=True)
         traces, sources = make_type_traces(a, meta["entry"], meta, work)
@@ -189,9 +173,14 @@ def main(argv=None):
         for t in a.types:
             if t not in traces:
                 raise SystemExit(f"suite: {meta['name']}: no {t} rays were made")
-            r = measure_type(a, meta["name"], t, traces[t], work)
-            r.update({"rays": traces[t]["rays"], "source_rays": traces[t]["source_rays"], "source": traces[t]["source"]})
-            results.append(r)
+            cells.append((cell_point(a, meta["name"], t, traces[t]["trace"], work), traces[t]))
+    points = [p for p, _ in cells]
+    cached = {p.result for p in points if os.path.exists(p.result) and not a.fresh}
+    results = []
+    for (p, trace), r in zip(cells, point_jobs.run_points(points, a, os.path.join(a.out, "runs"), "suite")):
+        r.update({"rays": trace["rays"], "source_rays": trace["source_rays"], "source": trace["source"],
+                  "cached": p.result in cached})
+        results.append(r)
     res_dir = os.path.join(a.out, "results")
     os.makedirs(res_dir, exist_ok=True)
     settings = {"size": a.size, "spp": a.spp, "glass_paths": a.glass_paths, "max_rays": a.max_rays,
