@@ -5,18 +5,34 @@
 #   VBSIM_CMAKE_ARGS  extra CMake options for a new build directory
 #                     (scripts/test.sh --sanitize, scripts/fuzz.sh set them)
 #   VBSIM_FUZZ=1      also install clang and its libFuzzer runtime
+#   --suite           also install the packages the workload suite's scenes come from
+#                     (scripts/suite.py, traces/suite/scenes.json, docs/suite.md)
 set -euo pipefail
+suite=0
+for arg in "$@"; do
+  case "$arg" in
+    --suite) suite=1 ;;
+    *) echo "usage: scripts/setup.sh [--suite]" >&2; exit 2 ;;
+  esac
+done
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 
 # git: the revision `vbsim --version` reports; libssl-dev: SHA-256 of the inputs every
 # output records; slurm-wlm and munge: the Slurm backend's test runs a one-node cluster;
 # embree-tools: the path tracer `vbsim capture` is tested on; libmpfr-dev: the narrow box
-# test (rtcore-systemc's low-precision arithmetic) is checked against MPFR.
+# test (rtcore-systemc's low-precision arithmetic) is checked against MPFR; time: the workload
+# suite reads each run's peak memory from /usr/bin/time -v.
 packages=(build-essential cmake pkg-config git libsystemc-dev catch2 libfmt-dev nlohmann-json3-dev
           libembree-dev libassimp-dev libcli11-dev libgmp-dev libmpfr-dev libssl-dev libstb-dev
-          python3-numpy python3-matplotlib slurm-wlm munge embree-tools)
+          python3-numpy python3-matplotlib slurm-wlm munge embree-tools time)
 if [ "${VBSIM_FUZZ:-0}" = 1 ]; then
   packages+=(clang libclang-rt-dev)
+fi
+# The suite's meshes: libcgal-demo (CGAL's demo data, /usr/share/doc/libcgal-demo/data.tar.gz:
+# armadillo, bunny00, diplodocus, refined_elephant; 24 MB, and libcgal-dev with it) and
+# assimp-testmodels (assimp's test models, 74 MB installed). Not in the default set: large.
+if [ "$suite" = 1 ]; then
+  packages+=(libcgal-demo assimp-testmodels)
 fi
 
 missing=()

@@ -127,6 +127,20 @@ class SlurmBackendTest(unittest.TestCase):
         self.assertEqual(a["families"], b["families"])
         self.assertEqual(strip(a), strip(b))
 
+    def test_suite_cells_on_slurm_equal_local(self):
+        tables = {}
+        for backend in ("local", "slurm"):
+            out = os.path.join(self.d, "suite-" + backend)
+            err = self.run_script("suite.py", "--small", "--scenes", "layers", "--types", "shadow,glass", "--vbsim",
+                                  VBSIM, "--out", out, *(self.slurm() if backend == "slurm" else []))
+            if backend == "slurm":
+                self.assertIn("submitted Slurm job array", err)
+            with open(os.path.join(out, "results", "suite.csv")) as f:
+                self.assertTrue(f.readline().startswith("# vbsim-provenance "))
+                tables[backend] = list(csv.DictReader(f))
+        self.assertGreater(len(tables["local"]), 20)  # two ray types, every method
+        self.assertEqual(tables["local"], tables["slurm"])  # errors, cycles, energy and area alike
+
     def test_a_failed_task_is_reported_with_its_id_and_log(self):
         work = os.path.join(self.d, "failing")
         good = Point("good", [["/bin/sh", "-c", f"echo ok > {work}/good.json.part"]], f"{work}/good.json")

@@ -1,0 +1,126 @@
+"""The workload suite's ray types, made with vbsim's own commands and split into
+one trace per type (docs/suite.md, "Ray types").
+
+Three sources per scene, each a reference run (children from the exact answers,
+so the rays do not depend on a method):
+- `vbsim render --integrator mirror`: primary rays, shadow rays toward the
+  point light, mirror (reflect) rays;
+- `vbsim render --integrator path --bounces 3`: diffuse rays by bounce (1, 2,
+  3: how many diffuse rays lie between the ray and its camera ray, plus one),
+  and the ambient-occlusion rays derived from the first bounce (below);
+- `vbsim gen paths --set depth=3`: glass (refract) rays of its camera paths
+  (ior 1.5; the renderer has no glass material).
+
+A type's trace holds that type's rays only, each without its parent ray
+(`parent` -1; `parent_prim`, `parent_t`, `parent_uv`, `parent_ns` kept): a
+replay then takes each ray's intended origin at `parent_uv` on `parent_prim`
+(docs/trace-format.md, "The exact answer"), and `vbsim oracle` fills in the
+exact answers for that definition. The cycle-level model sees the type's rays
+as independent queries, a wavefront renderer's queue of one kind.
+
+Ambient occlusion: each first diffuse bounce (a cosine-distributed direction
+about the shading normal of a camera hit) as an occlusion query (`kind`
+shadow) of length `ao_radius` times the scene's bounding-box diagonal.
+"""
+import json
+import math
+import os
+
+TYPES = ("primary", "shadow", "ao", "diffuse-1", "diffuse-2", "diffuse-3", "mirror", "glass")
+SOURCE_OF = {"primary": "mirror", "shadow": "mirror", "mirror": "mirror", "ao": "path",
+             "diffuse-1": "path", "diffuse-2": "path", "diffuse-3": "path", "glass": "glass"}
+
+
+def source_commands(vbsim, scene_ply, light, opts, out_dir):
+    """The command that makes each source's trace, keyed by source name."""
+    size = f"{opts.width}x{opts.height}"
+    light_arg = "point:" + ",".join(repr(float(x)) for x in light)
+    render = [vbsim, "render", scene_ply, "-m", "none", "--children-from", "exact", "--size", size,
+              "--light", light_arg, "-q"]
+    return {
+        "mirror": render + ["--integrator", "mirror", "-o", os.path.join(out_dir, "mirror.png"),
+                            "--trace-out", os.path.join(out_dir, "mirror.jsonl")],
+        "path": render + ["--integrator", "path", "--bounces", "3", "--spp", str(opts.spp), "--seed", "1",
+                          "-o", os.path.join(out_dir, "path.png"), "--trace-out", os.path.join(out_dir, "path.jsonl")],
+        "glass": [vbsim, "gen", "paths", "--rays", str(opts.glass_paths), "--seed", "1",
+                  "--set", "scene=" + os.path.abspath(scene_ply), "--set", "depth=3", "-o",
+                  os.path.join(out_dir, "glass"), "-q"],
+    }
+
+
+def source_trace(source, out_dir):
+    if source == "glass":
+        d = os.path.join(out_dir, "glass")
+        names = sorted(n for n in os.listdir(d) if n.endswith(".jsonl"))
+        return os.path.join(d, names[0])
+    return os.path.join(out_dir, source + ".jsonl")
+
+
+def _type_of(ray, source, depth):
+    kind = ray.get("kind", "primary")
+    if source == "mirror":
+        return {"primary": "primary", "shadow": "shadow", "reflect": "mirror"}.get(kind)
+    if source == "path":
+        return f"diffuse-{depth}" if kind == "diffuse" else None
+    return "glass" if kind == "refract" else None
+
+
+def split(source, trace, wanted, out_dir, ao_length, limit):
+    """Writes OUT_DIR/TYPE.raw.jsonl for every type of `wanted` this source makes:
+    its rays without parents and without `expect` (primary rays keep theirs),
+    at most `limit` of them taken evenly over the trace. Returns {type: (path,
+    rays in the source)}."""
+    with open(trace) as f:
+        header = json.loads(f.readline())
+        scene = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(trace)), header["scene"]))
+        depth, picked = {}, {t: [] for t in wanted}
+        for line in f:
+            if not line.strip() or line.startswith("#"):
+                continue
+            ray = json.loads(line)
+            parent = ray.get("parent", -1)
+            kind = ray.get("kind", "primary")
+            d = 0 if parent < 0 else depth.get(parent, 0) + (1 if kind == "diffuse" else 0)
+            if kind in ("primary", "diffuse"):
+                depth[ray["id"]] = d
+            t = _type_of(ray, source, d)
+            if t in picked:
+                picked[t].append(ray)
+            if source == "path" and t == "diffuse-1" and "ao" in picked:
+                picked["ao"].append(_ao_ray(ray, ao_length))
+    out = {}
+    for t, rays in picked.items():
+        if t not in SOURCE_OF or SOURCE_OF[t] != source:
+            continue
+        total = len(rays)
+        if limit and total > limit:
+            rays = [rays[(k * total) // limit] for k in range(limit)]
+        path = os.path.join(out_dir, t + ".raw.jsonl")
+        head = {"format": "vbsim-trace", "version": 1, "scene": os.path.relpath(scene, out_dir),
+                "generator": "scripts/suite.py",
+                "description": f"suite ray type {t}: {len(rays)} of {total} rays of {os.path.basename(trace)}, "
+                               "each without its parent ray"}
+        if "light" in header:
+            head["light"] = header["light"]
+        if "transform" in header:
+            head["transform"] = header["transform"]
+        with open(path + ".partial", "w") as f:
+            f.write(json.dumps(head) + "\n")
+            for r in rays:
+                if t != "primary":
+                    r = dict(r)
+                    r["parent"] = -1
+                    r.pop("expect", None)
+                f.write(json.dumps(r, separators=(",", ":")) + "\n")
+        os.replace(path + ".partial", path)
+        out[t] = (path, total)
+    return out
+
+
+def _ao_ray(ray, length):
+    r = dict(ray)
+    r["kind"] = "shadow"
+    norm = math.sqrt(sum(x * x for x in r["d"]))
+    r["tmax"] = length / norm
+    r.pop("expect", None)
+    return r
