@@ -17,14 +17,14 @@ Outputs are written to temporaries and renamed when complete.
 """
 import argparse
 import csv
-import json
 import os
-import re
 import subprocess
 import sys
 import tempfile
 
 import numpy as np
+
+import suite_measure as measure
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 WUSON = os.path.join(ROOT, "traces", "wuson", "WusonOBJ.obj")
@@ -43,28 +43,19 @@ def subdivided(out_dir, rounds):
 
 
 def timed_bench(vbsim, scene, rays, mode):
-    """One `vbsim bench` run under /usr/bin/time -v: its JSON plus wall time and peak RSS."""
+    """One `vbsim bench` run of random rays under /usr/bin/time -v: its figures, wall time and peak RSS."""
     with tempfile.TemporaryDirectory() as tmp:
-        out = os.path.join(tmp, "b.json")
-        cmd = ["/usr/bin/time", "-v", vbsim, "bench", "--scene", scene, "--rays", str(rays), "--mode", mode,
-               "--threads", "1", "--repeats", "1", "--json", out, "-q"]
-        if mode == "cycle":
-            cmd[cmd.index("--threads"):cmd.index("--threads") + 2] = []  # functional only
-            cmd += ["--preset", "small"]
-        run = subprocess.run(cmd, capture_output=True, text=True)
-        if run.returncode != 0:
-            raise SystemExit(f"scaling: {' '.join(cmd)} failed:\n{run.stderr}")
-        with open(out) as f:
-            result = json.load(f)
-    rss_kb = int(re.search(r"Maximum resident set size \(kbytes\): (\d+)", run.stderr).group(1))
-    wall = re.search(r"Elapsed \(wall clock\) time \(h:mm:ss or m:ss\): ([\d:.]+)", run.stderr).group(1)
-    seconds = 0.0
-    for part in wall.split(":"):
-        seconds = seconds * 60 + float(part)
+        try:
+            info, result = measure.bench_json(vbsim, ["--scene", scene, "--rays", str(rays)], mode, "none", 1,
+                                              os.path.join(tmp, "b.json"), os.path.join(tmp, "b.log"))
+        except measure.RunError as e:
+            raise SystemExit(f"scaling: {e}")
+    if info["peak_rss_kb"] is None:
+        raise SystemExit(f"scaling: {measure.TIME} is missing (scripts/setup.sh installs it)")
     return {"mode": mode, "triangles": result["triangles"], "rays": result["rays"],
             "bvh_build_s": result["bvh_build_s"], "vbsim_rays_per_s": result["vbsim_rays_per_s"],
             "embree_rays_per_s": result["embree_rays_per_s"], "ratio": result["ratio"],
-            "wall_s": seconds, "peak_rss_bytes": rss_kb * 1024}
+            "wall_s": info["wall_s"], "peak_rss_bytes": info["peak_rss_kb"] * 1024}
 
 
 def exponent(xs, ys):

@@ -16,7 +16,8 @@ class RunError(Exception):
 
 
 def run(cmd, log_path):
-    """Runs cmd; returns {"wall_s", "peak_rss_mb"}. Raises RunError with the
+    """Runs cmd; returns {"wall_s", "peak_rss_mb", "peak_rss_kb"} (the peak as /usr/bin/time
+    gives it; None without that program). Raises RunError with the
     log's tail on failure. stdout and stderr go to log_path."""
     timed = [TIME, "-v"] + cmd if os.path.exists(TIME) else cmd
     start = time.monotonic()
@@ -30,7 +31,8 @@ def run(cmd, log_path):
     if proc.returncode != 0:
         raise RunError(f"exit {proc.returncode}: {' '.join(cmd)}\n{text[-2000:]}")
     m = re.search(r"Maximum resident set size \(kbytes\): (\d+)", text)
-    return {"wall_s": round(wall, 3), "peak_rss_mb": round(int(m.group(1)) / 1024, 1) if m else None}
+    peak_kb = int(m.group(1)) if m else None
+    return {"wall_s": round(wall, 3), "peak_rss_mb": round(peak_kb / 1024, 1) if m else None, "peak_rss_kb": peak_kb}
 
 
 def score(vbsim, trace, preset, methods, testers, out_json, log_path):
@@ -72,16 +74,23 @@ def score_rows(table, kind):
     return out
 
 
-def bench(vbsim, trace, mode, method, repeats, out_json, log_path, preset="small"):
-    cmd = [vbsim, "bench", "--trace", trace, "--mode", mode, "-m", method, "--repeats", str(repeats),
-           "--json", out_json, "-q"]
+def bench_json(vbsim, rays_args, mode, method, repeats, out_json, log_path, preset="small"):
+    """One `vbsim bench` run of the rays `rays_args` names (["--trace", FILE], or ["--scene",
+    FILE, "--rays", N] for random rays): one thread; the cycle level on `preset`. Returns
+    run()'s figures and the bench's JSON."""
+    cmd = [vbsim, "bench"] + rays_args + ["--mode", mode, "-m", method, "--repeats", str(repeats),
+                                          "--json", out_json, "-q"]
     if mode == "functional":
         cmd += ["--threads", "1"]
     else:
         cmd += ["--preset", preset]
     info = run(cmd, log_path)
     with open(out_json) as f:
-        b = json.load(f)
+        return info, json.load(f)
+
+
+def bench(vbsim, trace, mode, method, repeats, out_json, log_path, preset="small"):
+    info, b = bench_json(vbsim, ["--trace", trace], mode, method, repeats, out_json, log_path, preset)
     info.update({"mode": mode, "method": method, "rays": b.get("rays"),
                  "vbsim_rays_per_s": b.get("vbsim_rays_per_s"), "embree_rays_per_s": b.get("embree_rays_per_s"),
                  "ratio": b.get("ratio")})

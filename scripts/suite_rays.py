@@ -26,6 +26,8 @@ import json
 import math
 import os
 
+from trace_writer import TraceWriter
+
 TYPES = ("primary", "shadow", "ao", "diffuse-1", "diffuse-2", "diffuse-3", "mirror", "glass")
 SOURCE_OF = {"primary": "mirror", "shadow": "mirror", "mirror": "mirror", "ao": "path",
              "diffuse-1": "path", "diffuse-2": "path", "diffuse-3": "path", "glass": "glass"}
@@ -96,23 +98,20 @@ def split(source, trace, wanted, out_dir, ao_length, limit):
         if limit and total > limit:
             rays = [rays[(k * total) // limit] for k in range(limit)]
         path = os.path.join(out_dir, t + ".raw.jsonl")
-        head = {"format": "vbsim-trace", "version": 1, "scene": os.path.relpath(scene, out_dir),
-                "generator": "scripts/suite.py",
-                "description": f"suite ray type {t}: {len(rays)} of {total} rays of {os.path.basename(trace)}, "
-                               "each without its parent ray"}
-        if "light" in header:
-            head["light"] = header["light"]
-        if "transform" in header:
-            head["transform"] = header["transform"]
-        with open(path + ".partial", "w") as f:
-            f.write(json.dumps(head) + "\n")
+        description = (f"suite ray type {t}: {len(rays)} of {total} rays of {os.path.basename(trace)}, "
+                       "each without its parent ray")
+        with TraceWriter(path, scene=os.path.relpath(scene, out_dir), light=header.get("light"),
+                         generator="scripts/suite.py", description=description,
+                         transform=header.get("transform")) as w:
             for r in rays:
+                fields = dict(r)
                 if t != "primary":
-                    r = dict(r)
-                    r["parent"] = -1
-                    r.pop("expect", None)
-                f.write(json.dumps(r, separators=(",", ":")) + "\n")
-        os.replace(path + ".partial", path)
+                    fields["parent"] = -1
+                    fields.pop("expect", None)
+                expect = fields.pop("expect", None)
+                if expect is not None:
+                    fields["expect"] = (expect["prim"], expect.get("t"))
+                w.ray(**fields)
         out[t] = (path, total)
     return out
 

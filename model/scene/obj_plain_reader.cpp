@@ -27,7 +27,7 @@ struct NotANumber {
 class PlainObjReader {
  public:
   PlainObjReader(const std::string& path, const ObjSummary& summary, SceneBuilder& builder)
-      : path_(path), builder_(builder), with_normals_(summary.faces > 0 && summary.faces_with_normals == summary.faces) {
+      : path_(path), builder_(builder), with_normals_(summary.every_face_names_normals()) {
     positions_.reserve(summary.vertices);
     builder_.reserve(summary.triangles);
   }
@@ -112,7 +112,7 @@ class PlainObjReader {
 Scene read_plain_obj(const std::string& bytes, const std::string& path, const ObjSummary& summary,
                      const std::optional<std::array<float, 16>>& transform, WorkProgress* progress) {
   if (!summary.plain()) throw SceneError(fmt::format("scene '{}': not a plain OBJ file", path));
-  SceneBuilder builder(path, transform, summary.faces > 0 && summary.faces_with_normals == summary.faces);
+  SceneBuilder builder(path, transform, summary.every_face_names_normals());
   PlainObjReader reader(path, summary, builder);
   uint64_t number = 0;
   const char* at = bytes.data();

@@ -77,9 +77,8 @@ class ObjChecker {
     if (w.empty() || w[0][0] == '#') return;
     const std::string_view key = w[0];
     const size_t args = w.size() - 1;
-    if (text[0] == ' ' || text[0] == '\t' || !(key == "v" ? args == 3 : key == "f" ? args == 3 : key == "vn" ||
-                                                   key == "vt" || key == "s"))
-      sum_.plain_statements = false;
+    const bool plain_statement = ((key == "v" || key == "f") && args == 3) || key == "vn" || key == "vt" || key == "s";
+    if (text[0] == ' ' || text[0] == '\t' || !plain_statement) sum_.plain_statements = false;
     if (key == "v") {
       if (args != 3 && args != 4 && args != 6) fail("'v' takes 3 coordinates (and w, or r g b)");
       numbers(w);

@@ -29,7 +29,9 @@ struct ObjSummary {
   /// with three numbers, `vn`, `vt`, `f` with three references, `s` or a
   /// comment, starting its line; no number is longer than 64 characters; and
   /// either every face names normals or none does.
-  bool plain() const { return plain_statements && (faces_with_normals == 0 || faces_with_normals == faces); }
+  bool plain() const { return plain_statements && (faces_with_normals == 0 || every_face_names_normals()); }
+  /// Whether the file's triangles carry corner normals: every face names them.
+  bool every_face_names_normals() const { return faces > 0 && faces_with_normals == faces; }
   bool plain_statements = true;  ///< the statements' part of plain()
 };
 
