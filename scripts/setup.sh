@@ -35,16 +35,30 @@ if [ "$suite" = 1 ]; then
   packages+=(libcgal-demo assimp-testmodels)
 fi
 
-missing=()
-for p in "${packages[@]}"; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-done
-if ((${#missing[@]})); then
-  echo "vbsim setup: installing ${missing[*]}" >&2
+# blender: Blender's Cycles renders through the shared libembree3, so `vbsim capture` traces it
+# unmodified (scripts/blender_capture.py, docs/capture.md); without its recommended packages.
+lean_packages=(blender)
+
+missing_of() {
+  local p
+  for p in "$@"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || echo "$p"
+  done
+}
+mapfile -t missing < <(missing_of "${packages[@]}")
+mapfile -t missing_lean < <(missing_of "${lean_packages[@]}")
+if ((${#missing[@]} + ${#missing_lean[@]})); then
+  echo "vbsim setup: installing ${missing[*]} ${missing_lean[*]}" >&2
   sudo_cmd=()
   [ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
   "${sudo_cmd[@]}" apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq "${missing[@]}" >&2
+  if ((${#missing[@]})); then
+    DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq "${missing[@]}" >&2
+  fi
+  if ((${#missing_lean[@]})); then
+    DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends \
+      "${missing_lean[@]}" >&2
+  fi
 fi
 
 build="${VBSIM_BUILD_DIR:-$root/build}"

@@ -74,7 +74,7 @@ HAS_SIGN = 1 << 5
 KIND_NAMES = ("primary", "reflect", "refract", "diffuse", "shadow")
 # The `incomplete` field's reasons: bit k is INCOMPLETE_REASONS[k] (docs/trace-format.md).
 INCOMPLETE_REASONS = ("instance", "quad", "grid", "subdivision", "curve", "point", "user", "motion_blur",
-                      "other_geometry", "filter", "mask")
+                      "other_geometry", "filter", "mask", "unlinked")
 
 BINARY_EXTENSION = ".vbt"
 _CHUNK = 4096  # records buffered before a write

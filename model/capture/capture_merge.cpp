@@ -90,14 +90,29 @@ std::string join(const std::vector<std::string>& words) {
   return s;
 }
 
-std::string hit_line(int64_t id, const RawRay& r, int64_t triangle) {
-  if (occluded(r)) return fmt::format("{{\"id\":{},\"occluded\":{}}}\n", id, std::isinf(r.hit_t) && r.hit_t < 0);
-  if (r.geom == kInvalidId) return fmt::format("{{\"id\":{},\"prim\":-1}}\n", id);
+/// What the application's filter functions rejected for `r`: `"filter_rejected"`
+/// with Embree's ids, how often, and whether it was the parent's primitive.
+std::string rejected_fields(const RawRay& r, bool self_excluded) {
+  if (!(r.flags & kRawFilterRejected)) return "";
+  std::string s = fmt::format(",\"filter_rejected\":{{\"geom\":{},\"geom_prim\":{}", r.rejected_geom, r.rejected_prim);
+  if (r.rejected_inst != kInvalidId) s += fmt::format(",\"inst\":{}", r.rejected_inst);
+  return s + fmt::format(",\"times\":{},\"parent\":{}}}", r.rejections, self_excluded);
+}
+
+/// Embree's answer to ray `id` as one line of embree_hits.jsonl; an
+/// intersect query the trace kinds a shadow ray also says whether it was occluded.
+std::string hit_line(int64_t id, const RawRay& r, int64_t triangle, bool self_excluded, RayKind kind) {
+  std::string rejected = rejected_fields(r, self_excluded);
+  if (kind == RayKind::Shadow && !occluded(r))
+    rejected = fmt::format(",\"occluded\":{}", r.geom != kInvalidId) + rejected;
+  if (occluded(r))
+    return fmt::format("{{\"id\":{},\"occluded\":{}{}}}\n", id, std::isinf(r.hit_t) && r.hit_t < 0, rejected);
+  if (r.geom == kInvalidId) return fmt::format("{{\"id\":{},\"prim\":-1{}}}\n", id, rejected);
   std::string s = fmt::format("{{\"id\":{},\"prim\":{},\"t\":{},\"u\":{},\"v\":{},\"geom\":{},\"geom_prim\":{}", id,
                               triangle, r.hit_t, r.u, r.v, r.geom, r.prim);
   if (r.inst != kInvalidId) s += fmt::format(",\"inst\":{}", r.inst);
   if (triangle < 0) s += ",\"not_captured\":true";
-  return s + "}\n";
+  return s + rejected + "}\n";
 }
 
 /// Embree's answer as the trace's `reference`: occluded or not, a miss, or a
@@ -155,7 +170,7 @@ MergeResult merge_capture(const std::string& raw_dir, const std::string& out_dir
         "trace to write; its geometries: {}", key.first, key.second, describe_geometries(scene.geometries(), true)));
   const auto values = read_process_summary(files.summary);
   const bool unwatched_filters = values.count("unwatched_filter_functions") && values.at("unwatched_filter_functions") > 0;
-  const IncompleteRayJudge judge(scene, unwatched_filters);
+  IncompleteRayJudge judge(scene, unwatched_filters, opt.rules.on_surface_ulps);
 
   // Per thread: eligibility, links, trees.
   std::vector<ThreadRays> threads;
@@ -190,6 +205,13 @@ MergeResult merge_capture(const std::string& raw_dir, const std::string& out_dir
     group_trees(static_cast<uint32_t>(threads.size() - 1), t, trees);
   }
   sort_trees(threads, trees);
+  // Whether the application excludes parents' primitives (Cycles does): seen on any linked ray.
+  bool excludes_parents = false;
+  for (const ThreadRays& t : threads)
+    for (std::size_t i = 0; i < t.rays.size() && !excludes_parents; ++i)
+      excludes_parents = t.links[i].parent >= 0 &&
+                         IncompleteRayJudge::self_excluded(t.rays[i], &t.rays[static_cast<std::size_t>(t.links[i].parent)]);
+  judge.set_renderer_excludes_parents(excludes_parents);
 
   // Outputs, under temporary names of this run's own (AtomicOutputFile:
   // NAME.partial-PID-N) until everything is written; then scene, hits, trace
@@ -231,6 +253,7 @@ MergeResult merge_capture(const std::string& raw_dir, const std::string& out_dir
       const uint32_t i = t.order[tree.first + k];
       const RawRay& r = t.rays[i];
       const RayLink& l = t.links[i];
+      const RawRay* parent = l.parent >= 0 ? &t.rays[static_cast<std::size_t>(l.parent)] : nullptr;
       TraceRay tr = base_ray(r);
       tr.id = ids[tree.thread][i] = next_id++;
       tr.kind = l.kind;
@@ -249,14 +272,14 @@ MergeResult merge_capture(const std::string& raw_dir, const std::string& out_dir
           tr.tmin = 0.0f;
         }
       }
-      tr.incomplete = judge.reasons(r);
+      tr.incomplete = judge.reasons(r, parent);
       set_reference(tr, r, scene.triangle_hit(r).triangle);
       if (tr.incomplete != 0) {
         ++incomplete;
         for (int b = 0; b < kIncompleteReasonCount; ++b) incomplete_by_reason[b] += (tr.incomplete >> b) & 1u;
       }
       sink->write(tr);
-      hits << hit_line(tr.id, r, scene.triangle_hit(r).triangle);
+      hits << hit_line(tr.id, r, scene.triangle_hit(r).triangle, IncompleteRayJudge::self_excluded(r, parent), l.kind);
     }
   }
   hits_file.check();
@@ -314,14 +337,18 @@ MergeResult merge_capture(const std::string& raw_dir, const std::string& out_dir
       {"hits_outside_captured_triangles", outside_hits},
       {"incomplete", {{"rays", incomplete}, {"by_reason", by_reason},
                       {"unwatched_filter_functions", unwatched_filters}}},
+      {"self_excluded", judge.self_excluded_rays()},
+      {"renderer_excludes_parents", excludes_parents},
       {"instances", {{"flattened", scene.has_instances()}, {"rays_checked", judge.flattened_checked()},
                      {"flattened_answer_differs", judge.flattened_differs()}}},
       {"links", {{"at_hit_point", links.at_hit_point}, {"normal_offset", links.normal_offset},
+                 {"rejected_primitive", links.rejected_primitive},
                  {"max_normal_offset", links.max_offset}, {"unlinked_intersect", links.unlinked_intersect},
                  {"unlinked_occluded", links.unlinked_occluded}}},
       {"kinds", kinds},
       {"strip_offsets", {{"on", opt.strip_offsets}, {"origins_moved", moved_origins}, {"tmin_cleared", cleared_tmin}}},
-      {"rules", {{"link_ulps", opt.rules.ulps}, {"link_normal_offset", opt.rules.normal_offset},
+      {"rules", {{"link_ulps", opt.rules.ulps}, {"link_rejected_ulps", opt.rules.rejected_ulps},
+                 {"on_surface_ulps", opt.rules.on_surface_ulps}, {"link_normal_offset", opt.rules.normal_offset},
                  {"history", opt.rules.history}, {"mirror_radians", opt.rules.mirror_radians}}},
   };
   scene_file.commit();
@@ -333,23 +360,26 @@ MergeResult merge_capture(const std::string& raw_dir, const std::string& out_dir
   out.summary = fmt::format(
       "vbsim capture: {} rays from {} thread{} ({}) -> {}\n"
       "  scene: {} triangles -> {}\n"
-      "  links: {} at the hit point, {} offset along the normal (up to {:.3g} of the hit point's size); "
-      "unlinked: {} intersect, {} occluded\n"
+      "  links: {} at the hit point, {} offset along the normal (up to {:.3g} of the hit point's size), {} by the "
+      "primitive their filter rejected; unlinked: {} intersect, {} occluded\n"
       "  not captured: {} rays of other processes (or programs they exec'd), {} of other scenes or commits, {} invalid; "
       "{} hits outside the captured triangles\n"
-      "  geometries not in the trace: {}\n",
+      "  geometries not in the trace: {}\n"
+      "  self-exclusion: {} rays whose filter functions rejected their parent's primitive only (scored: primid "
+      "reproduces it)\n",
       next_id, threads.size(), threads.size() == 1 ? "" : "s", by_function, trace_path.string(),
       scene.triangles().size(), scene_path.string(), links.at_hit_point, links.normal_offset, links.max_offset,
-      links.unlinked_intersect, links.unlinked_occluded, other_process_rays, other_scene, invalid, outside_hits,
-      describe_geometries(scene.geometries(), false));
+      links.rejected_primitive, links.unlinked_intersect, links.unlinked_occluded, other_process_rays, other_scene, invalid, outside_hits,
+      describe_geometries(scene.geometries(), false), judge.self_excluded_rays());
   if (scene.has_instances())
     out.summary += fmt::format(
         "  instances: flattened into world-space triangles; {} of {} rays answered otherwise on them than by Embree's "
         "instance-space test (marked instance)\n", judge.flattened_differs(), judge.flattened_checked());
   if (incomplete > 0)
     out.summary += fmt::format(
-        "  incomplete: {} of {} rays ({}): Embree's answer involves geometry or filter functions the trace does "
-        "not hold; they are marked `incomplete` in the trace and replays do not score them\n",
+        "  incomplete: {} of {} rays ({}): the trace cannot reproduce Embree's answer (geometry or filter "
+        "functions it does not hold, or an origin on a surface with no parent found); they are marked "
+        "`incomplete` in the trace and replays do not score them\n",
         incomplete, next_id, reasons_text);
   else
     out.summary += "  incomplete: 0 rays (no answer involves geometry outside the trace or a filter function)\n";

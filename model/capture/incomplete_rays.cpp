@@ -36,8 +36,15 @@ uint32_t incomplete_reason_of(const CapturedGeometry& g) {
   }
 }
 
-IncompleteRayJudge::IncompleteRayJudge(const CapturedScene& scene, bool unwatched_filters)
+IncompleteRayJudge::IncompleteRayJudge(const CapturedScene& scene, bool unwatched_filters, int on_surface_ulps)
     : scene_(scene), unwatched_filters_(unwatched_filters) {
+  float extent = 0.0f;
+  for (const Triangle& t : scene.triangles())
+    for (const Vec3f& v : {t.v0, t.v1, t.v2})
+      for (int a = 0; a < 3; ++a)
+        if (std::isfinite(v[a])) extent = std::max(extent, std::fabs(v[a]));
+  on_surface_radius_ = on_surface_ulps * (std::nextafter(extent, INFINITY) - extent);
+  if (!scene.triangles().empty()) surfaces_ = std::make_unique<SurfaceProximity>(scene.triangles());
   for (const CapturedGeometry& g : scene.geometries()) {
     if (g.status == RawGeometryStatus::Captured &&
         std::find(masks_.begin(), masks_.end(), g.mask) == masks_.end())
@@ -48,14 +55,30 @@ IncompleteRayJudge::IncompleteRayJudge(const CapturedScene& scene, bool unwatche
     reason_by_geom_[g.geom_id] = r;
   }
   if ((uncaptured_kinds_ != 0 || scene.has_instances()) && !scene.triangles().empty())
-    captured_only_ = std::make_unique<EmbreeReference>(make_scene(scene.triangles()));
+    captured_only_ = std::make_unique<EmbreeReference>(make_scene(scene.triangles()), "", true);
 }
 
 IncompleteRayJudge::~IncompleteRayJudge() = default;
 
-uint32_t IncompleteRayJudge::reasons(const RawRay& r) const {
+bool IncompleteRayJudge::self_excluded(const RawRay& r, const RawRay* parent) {
+  return parent && (r.flags & kRawFilterRejected) && parent->geom != kInvalidId && r.rejected_geom == parent->geom &&
+         r.rejected_prim == parent->prim && r.rejected_inst == parent->inst;
+}
+
+uint32_t IncompleteRayJudge::reasons(const RawRay& r, const RawRay* parent) const {
   uint32_t bits = 0;
-  if (unwatched_filters_ || (r.flags & (kRawFilterChanged | kRawContextFilter))) bits |= kIncompleteFilter;
+  const bool excluded = self_excluded(r, parent);
+  self_excluded_rays_ += excluded;
+  if (unwatched_filters_ || (r.flags & (kRawFilterChanged | kRawContextFilter)) ||
+      ((r.flags & kRawFilterRejected) && !excluded))
+    bits |= kIncompleteFilter;
+  // The triangle the renderer's filter kept this ray from hitting: a replay
+  // with the same exclusion (primid) gives the application's answer.
+  const int32_t exclude = excluded || (renderer_excludes_parents_ && parent)
+                              ? static_cast<int32_t>(scene_.triangle_hit(*parent).triangle)
+                              : -1;
+  if (!parent && surfaces_ && surfaces_->within({r.org[0], r.org[1], r.org[2]}, on_surface_radius_))
+    bits |= kIncompleteUnlinked;
   // A captured geometry whose mask shares no bit with the ray's: Embree did not
   // test it for this ray, a replay of the trace would.
   for (const uint32_t m : masks_)
@@ -63,8 +86,9 @@ uint32_t IncompleteRayJudge::reasons(const RawRay& r) const {
   int32_t prim = -1;
   float t = 0.0f, u, v;
   auto captured_answer = [&] {  // Embree's closest hit on the trace's triangles
-    return captured_only_ && captured_only_->intersect({r.org[0], r.org[1], r.org[2]},
-                                                       {r.dir[0], r.dir[1], r.dir[2]}, r.tnear, r.tfar, prim, t, u, v);
+    return captured_only_ && captured_only_->intersect_excluding({r.org[0], r.org[1], r.org[2]},
+                                                                 {r.dir[0], r.dir[1], r.dir[2]}, r.tnear, r.tfar,
+                                                                 exclude, prim, t, u, v);
   };
   if (r.op == static_cast<uint16_t>(RawOp::Intersect)) {
     const TriangleHit h = scene_.triangle_hit(r);

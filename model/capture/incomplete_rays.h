@@ -7,14 +7,20 @@
 //     geometry, that the captured triangles alone do not occlude (Embree's
 //     own test on them): it is marked with every kind the scene holds outside
 //     the trace, since Embree does not say what occluded it;
-//   - any query during which one of the application's geometry filter
-//     functions rejected or changed a candidate hit, or whose intersect
-//     context carried a filter function (the shim does not see what those
-//     decided), or every query when the shim could not watch all filter
-//     functions.
+//   - any query during which the application's filter functions (on a
+//     geometry or in the intersect context) changed the answer other than by
+//     rejecting the ray's own parent primitive (the renderer's self-exclusion,
+//     which `primid` reproduces: such a ray is scoreable and counted as
+//     self-excluded), or every query when the shim could not watch all filter
+//     functions;
+//   - a ray with no parent whose origin lies on a surface of the scene
+//     (within `on_surface_ulps` ulps of the scene's largest coordinate): a
+//     secondary ray the capture could not link, which scored as a camera ray
+//     would expect the surface it leaves as its answer (`unlinked`);
 //   - in a scene with instances (flattened into world-space triangles), any
 //     query whose answer on the flattened triangles (Embree's robust test on
-//     them) is not the application's: the flattened float arithmetic is not
+//     them, with the parent's triangle excluded when the renderer excluded
+//     it) is not the application's: the flattened float arithmetic is not
 //     Embree's instance-space test.
 // Otherwise a miss, a hit on a captured triangle (Embree reports the closest
 // hit) and an unoccluded shadow ray are what the captured scene gives.
@@ -26,6 +32,7 @@
 #include "capture/captured_scene.h"
 #include "capture/raw_capture_format.h"
 #include "scene/embree_reference.h"
+#include "scene/surface_proximity.h"
 
 namespace vbsim::capture {
 
@@ -36,11 +43,24 @@ uint32_t incomplete_reason_of(const CapturedGeometry& g);
 class IncompleteRayJudge {
  public:
   /// `unwatched_filters`: the process set filter functions the shim could not wrap.
-  IncompleteRayJudge(const CapturedScene& scene, bool unwatched_filters);
+  IncompleteRayJudge(const CapturedScene& scene, bool unwatched_filters, int on_surface_ulps);
   ~IncompleteRayJudge();
 
-  /// IncompleteReason bits of `r`, a ray traced against `scene` (0: the trace reproduces its answer).
-  uint32_t reasons(const RawRay& r) const;
+  /// IncompleteReason bits of `r`, a ray traced against `scene` (0: the trace
+  /// reproduces its answer); `parent`: the hit `r` is linked to, or null.
+  uint32_t reasons(const RawRay& r, const RawRay* parent) const;
+
+  /// Whether the application's filters rejected candidates of `r` on its
+  /// parent's primitive only (primitive-ID exclusion, as Cycles does).
+  static bool self_excluded(const RawRay& r, const RawRay* parent);
+  /// The application excludes a ray's parent primitive (its filters were
+  /// seen doing so): the flattened re-check of every linked ray excludes the
+  /// parent's triangle, whether or not Embree offered it to the filter.
+  void set_renderer_excludes_parents(bool on) { renderer_excludes_parents_ = on; }
+  /// Distance within which a parentless ray's origin is on a surface.
+  float on_surface_radius() const { return on_surface_radius_; }
+  /// Rays judged so far whose filters rejected their parent's primitive only.
+  int64_t self_excluded_rays() const { return self_excluded_rays_; }
 
   /// Reasons of every geometry of the scene outside the trace.
   uint32_t uncaptured_kinds() const { return uncaptured_kinds_; }
@@ -57,7 +77,10 @@ class IncompleteRayJudge {
   std::vector<uint32_t> reason_by_geom_;           ///< geomID -> reason bit
   std::vector<uint32_t> masks_;                    ///< the distinct masks of the captured geometries
   std::unique_ptr<EmbreeReference> captured_only_;  ///< the captured triangles, when anything is outside
-  mutable int64_t flattened_checked_ = 0, flattened_differs_ = 0;
+  std::unique_ptr<SurfaceProximity> surfaces_;      ///< the captured triangles, for parentless origins
+  float on_surface_radius_ = 0.0f;
+  bool renderer_excludes_parents_ = false;
+  mutable int64_t flattened_checked_ = 0, flattened_differs_ = 0, self_excluded_rays_ = 0;
 };
 
 }  // namespace vbsim::capture

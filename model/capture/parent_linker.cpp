@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <deque>
+#include <limits>
 
 #include "datapath/hit_point.h"
 
@@ -46,6 +47,7 @@ bool is_hit(const RawRay& r) {
 
 void LinkCounts::add(const LinkCounts& o) {
   at_hit_point += o.at_hit_point;
+  rejected_primitive += o.rejected_primitive;
   normal_offset += o.normal_offset;
   unlinked_intersect += o.unlinked_intersect;
   unlinked_occluded += o.unlinked_occluded;
@@ -62,13 +64,14 @@ ParentLinker::Candidate ParentLinker::candidate(std::size_t index, const RawRay&
   const Vec3d n = unit_normal(tri);
   c.normal[0] = n.x, c.normal[1] = n.y, c.normal[2] = n.z;
   c.size = std::max(max_abs(to_d(c.point)), max_abs(to_d(hit.hit_t * dir_of(hit))));
+  c.scale = std::max({c.size, max_abs(to_d(tri.v0)), max_abs(to_d(tri.v1)), max_abs(to_d(tri.v2))});
   return c;
 }
 
 bool ParentLinker::matches(const Candidate& c, const RawRay& child, RayLink& out) const {
   const Vec3d disp = sub(to_d(org_of(child)), to_d(c.point));
   const double d = max_abs(disp);
-  const double tol = rules_.ulps * ulp_of(std::max(max_abs(to_d(c.point)), max_abs(to_d(org_of(child)))));
+  const double tol = rules_.ulps * ulp_of(std::max(c.scale, max_abs(to_d(org_of(child)))));
   if (d <= tol) {
     out.tier = LinkTier::AtHitPoint;
     out.offset = 0.0;
@@ -84,11 +87,20 @@ bool ParentLinker::matches(const Candidate& c, const RawRay& child, RayLink& out
   return true;
 }
 
+bool ParentLinker::matches_rejected(const Candidate& c, const RawRay& hit, const RawRay& child) const {
+  if (!(child.flags & kRawFilterRejected) || child.rejected_geom != hit.geom || child.rejected_prim != hit.prim ||
+      child.rejected_inst != hit.inst)
+    return false;
+  const double d = max_abs(sub(to_d(org_of(child)), to_d(c.point)));
+  return d <= rules_.rejected_ulps * ulp_of(std::max(c.scale, max_abs(to_d(org_of(child)))));
+}
+
 bool ParentLinker::origin_matches(const RawRay& parent, const Triangle& tri, const RawRay& child, RayLink& out) const {
   return matches(candidate(0, parent, -1, tri), child, out);
 }
 
 RayKind ParentLinker::infer_kind(const RawRay& parent, const Triangle& tri, const RawRay& child) const {
+  if (std::isfinite(child.tfar) && child.tfar < std::numeric_limits<float>::max()) return RayKind::Shadow;
   const Vec3d n = unit_normal(tri);
   const Vec3d din = unit(to_d(dir_of(parent))), dout = unit(to_d(dir_of(child)));
   const double a = dot(din, n), b = dot(dout, n);
@@ -116,12 +128,23 @@ std::vector<RayLink> ParentLinker::link(const RawRay* rays, std::size_t n, const
       l.kind = occluded ? RayKind::Shadow : infer_kind(rays[it->index], tri, r);
       break;
     }
+    if (l.parent < 0 && (r.flags & kRawFilterRejected))
+      for (auto it = recent.rbegin(); it != recent.rend(); ++it) {
+        if (!matches_rejected(*it, rays[it->index], r)) continue;
+        const Triangle& tri = scene_.triangles()[static_cast<std::size_t>(it->triangle)];
+        l.parent = static_cast<int64_t>(it->index);
+        l.tier = LinkTier::RejectedPrimitive;
+        l.kind = occluded ? RayKind::Shadow : infer_kind(rays[it->index], tri, r);
+        break;
+      }
     if (l.parent < 0) {
       l.tier = LinkTier::None;
       l.kind = occluded ? RayKind::Shadow : RayKind::Primary;
       ++(occluded ? counts.unlinked_occluded : counts.unlinked_intersect);
     } else if (l.tier == LinkTier::AtHitPoint) {
       ++counts.at_hit_point;
+    } else if (l.tier == LinkTier::RejectedPrimitive) {
+      ++counts.rejected_primitive;
     } else {
       ++counts.normal_offset;
       counts.max_offset = std::max(counts.max_offset, l.offset);

@@ -67,14 +67,30 @@ struct RawRay {
   uint32_t prim;
   uint32_t inst;     ///< instID[0]: kInvalidId unless the hit is inside an instance
   uint32_t flags;    ///< RawRayFlag bits
+  /// The candidate hit the application's filter functions rejected for this
+  /// ray (kRawFilterRejected): geomID, primID and instID[0] as Embree passed
+  /// them to the filter; kInvalidId when none was rejected.
+  uint32_t rejected_geom;
+  uint32_t rejected_prim;
+  uint32_t rejected_inst;
+  uint32_t rejections;  ///< how many times a filter rejected a candidate for this ray
 };
 
 /// What else took part in a ray's call (RawRay::flags).
 enum RawRayFlag : uint32_t {
-  kRawFilterChanged = 1u << 0,   ///< a geometry filter function rejected or changed a candidate hit in the call
-  kRawContextFilter = 1u << 1,   ///< the call's intersect context carried a filter function
+  /// A filter function changed the answer in a way the record does not
+  /// describe: it changed a candidate hit or the ray's tfar, rejected
+  /// candidates on more than one primitive, or ran where the shim cannot tell
+  /// which ray it filtered (a stream call, a one-ray call inside a packet).
+  kRawFilterChanged = 1u << 0,
+  /// The call's intersect context carried a filter function the shim could
+  /// not watch (every trampoline taken): what it decided is unknown.
+  kRawContextFilter = 1u << 1,
+  /// Filter functions (geometry or context) rejected candidate hits of this
+  /// ray, every one on the primitive named by rejected_geom/prim/inst.
+  kRawFilterRejected = 1u << 2,
 };
-static_assert(sizeof(RawRay) == 96, "RawRay is a 96-byte record");
+static_assert(sizeof(RawRay) == 112, "RawRay is a 112-byte record");
 
 constexpr char kRawSceneMagic[8] = {'V', 'B', 'C', 'A', 'P', 'S', 'C', '1'};
 

@@ -1,12 +1,11 @@
-// The geometry filter setters the shim interposes, and the trampolines that
-// count filter calls per thread (filter_watch.h).
+// The geometry filter setters the shim interposes, the trampolines that watch
+// the application's filter functions, and FilterWatch (filter_watch.h).
 #include <array>
 #include <atomic>
 #include <cstring>
 #include <mutex>
 #include <utility>
 
-#include "capture/raw_capture_format.h"
 #include "capture_output.h"
 #include "filter_watch.h"
 #include "real_embree.h"
@@ -16,24 +15,35 @@ namespace vbsim::shim {
 
 namespace {
 
+using capture::RawRay;
+
 constexpr std::size_t kTrampolines = 64;  // distinct filter functions watched per process
-constexpr unsigned kMaxLanes = 16;         // Embree's widest packet
+constexpr unsigned kMaxLanes = FilterWatch::kMaxLanes;
 /// RTCHitN fields: Ng (3), u, v, primID, geomID, then instID per instance level, N lanes each.
 constexpr std::size_t kHitFields = 7 + RTC_MAX_INSTANCE_LEVEL_COUNT;
+constexpr unsigned kPrimField = 5, kGeomField = 6, kInstField = 7;
 constexpr unsigned kTfarField = 8;  // RTCRayN: org (3), tnear, dir (3), time, tfar, ...
 
-thread_local uint64_t t_filter_changes = 0;
+thread_local FilterWatch* t_watch = nullptr;
 std::atomic<RTCFilterFunctionN> g_filters[kTrampolines];
 std::atomic<uint64_t> g_unwatched{0};
 
-/// Calls `f` and counts the call on this thread when it rejected a candidate
-/// hit (a valid lane cleared) or changed the candidate hit or the ray's tfar:
-/// a filter that accepts the hit as Embree found it leaves the answer as it is.
+uint32_t hit_field(const unsigned char* hit, unsigned n, unsigned field, unsigned lane) {
+  uint32_t v;
+  std::memcpy(&v, hit + (field * n + lane) * 4, 4);
+  return v;
+}
+
+/// Calls `f` and reports to the thread's watch, lane by lane, a rejected
+/// candidate (valid cleared) or any other change of the candidate hit or the
+/// ray's tfar: a filter that accepts the hit as Embree found it changes nothing.
 void call_watched(RTCFilterFunctionN f, const RTCFilterFunctionNArguments* args) {
+  FilterWatch* watch = FilterWatch::current();
   const unsigned n = args->N;
-  if (n > kMaxLanes || !args->valid || !args->hit || !args->ray) {
-    ++t_filter_changes;  // not a layout the shim can compare: the call may have changed the answer
-    return f(args);
+  if (!watch) return f(args);  // outside any ray call the shim records
+  if (n == 0 || n > kMaxLanes || !args->valid || !args->hit || !args->ray) {
+    f(args);  // not a layout the shim can compare: the call may have changed any answer
+    return watch->changed(n, kMaxLanes);
   }
   int valid[kMaxLanes];
   unsigned char hit[kHitFields * kMaxLanes * 4];
@@ -43,9 +53,19 @@ void call_watched(RTCFilterFunctionN f, const RTCFilterFunctionNArguments* args)
   std::memcpy(hit, args->hit, kHitFields * n * 4);
   std::memcpy(tfar, ray_tfar, n * sizeof(float));
   f(args);
-  if (std::memcmp(valid, args->valid, n * sizeof(int)) != 0 || std::memcmp(hit, args->hit, kHitFields * n * 4) != 0 ||
-      std::memcmp(tfar, ray_tfar, n * sizeof(float)) != 0)
-    ++t_filter_changes;
+  const auto* hit_after = reinterpret_cast<const unsigned char*>(args->hit);
+  for (unsigned i = 0; i < n; ++i) {
+    if (valid[i] == 0) continue;  // not a candidate in this call
+    if (args->valid[i] == 0) {
+      watch->rejected(n, i, hit_field(hit, n, kGeomField, i), hit_field(hit, n, kPrimField, i),
+                      hit_field(hit, n, kInstField, i));
+      continue;
+    }
+    bool same = std::memcmp(&tfar[i], &ray_tfar[i], sizeof(float)) == 0;
+    for (std::size_t k = 0; k < kHitFields && same; ++k)
+      same = std::memcmp(hit + (k * n + i) * 4, hit_after + (k * n + i) * 4, 4) == 0;
+    if (!same) watch->changed(n, i);
+  }
 }
 
 template <std::size_t K>
@@ -59,34 +79,84 @@ constexpr std::array<RTCFilterFunctionN, sizeof...(K)> make_trampolines(std::ind
 }
 constexpr auto kTrampolineTable = make_trampolines(std::make_index_sequence<kTrampolines>{});
 
-/// The trampoline that calls `f` (null stays null); `f` itself when every trampoline is taken.
-RTCFilterFunctionN watched(RTCFilterFunctionN f) {
-  if (!f) return f;
-  static std::mutex m;
-  std::lock_guard<std::mutex> lock(m);
-  for (std::size_t k = 0; k < kTrampolines; ++k) {
-    if (kTrampolineTable[k] == f) return f;  // already one of ours
-    RTCFilterFunctionN cur = g_filters[k].load(std::memory_order_relaxed);
-    if (cur == f) return kTrampolineTable[k];
-    if (!cur) {
-      g_filters[k].store(f, std::memory_order_release);
-      return kTrampolineTable[k];
-    }
-  }
-  ++g_unwatched;
-  return f;
-}
-
 }  // namespace
 
-uint64_t filter_changes_on_this_thread() { return t_filter_changes; }
+RTCFilterFunctionN watched_filter(RTCFilterFunctionN f) {
+  if (!f) return f;
+  // The last function looked up on this thread: a context filter is looked up on every call.
+  thread_local RTCFilterFunctionN last_f = nullptr, last_t = nullptr;
+  if (f == last_f) return last_t;
+  static std::mutex m;
+  std::lock_guard<std::mutex> lock(m);
+  RTCFilterFunctionN t = f;
+  for (std::size_t k = 0; k < kTrampolines; ++k) {
+    if (kTrampolineTable[k] == f) break;  // already one of ours
+    RTCFilterFunctionN cur = g_filters[k].load(std::memory_order_relaxed);
+    if (cur == f) {
+      t = kTrampolineTable[k];
+      break;
+    }
+    if (!cur) {
+      g_filters[k].store(f, std::memory_order_release);
+      t = kTrampolineTable[k];
+      break;
+    }
+    if (k + 1 == kTrampolines) ++g_unwatched;
+  }
+  last_f = f, last_t = t;
+  return t;
+}
+
 uint64_t unwatched_filter_functions() { return g_unwatched.load(); }
 
-uint32_t FilterWatch::flags() const {
+FilterWatch::FilterWatch(RTCIntersectContext* ctx, unsigned lanes, bool attributable)
+    : lanes_(lanes), attributable_(attributable && lanes <= kMaxLanes), ctx_(ctx), outer_(t_watch) {
+  if (ctx && ctx->filter) {
+    context_filter_ = ctx->filter;
+    const RTCFilterFunctionN t = watched_filter(ctx->filter);
+    context_unwatched_ = t == ctx->filter;
+    ctx->filter = t;
+  }
+  t_watch = this;
+}
+
+FilterWatch::~FilterWatch() {
+  if (context_filter_) ctx_->filter = context_filter_;
+  t_watch = outer_;
+}
+
+FilterWatch* FilterWatch::current() { return t_watch; }
+
+void FilterWatch::rejected(unsigned n, unsigned lane, uint32_t geom, uint32_t prim, uint32_t inst) {
+  if (!maps(n, lane)) {
+    unmatched_ = true;
+    return;
+  }
+  Lane& l = lane_[lane];
+  if (l.rejections == 0) l.geom = geom, l.prim = prim, l.inst = inst;
+  else if (l.geom != geom || l.prim != prim || l.inst != inst) l.changed = true;  // a second primitive
+  ++l.rejections;
+}
+
+void FilterWatch::changed(unsigned n, unsigned lane) {
+  if (!maps(n, lane)) unmatched_ = true;
+  else lane_[lane].changed = true;
+}
+
+void FilterWatch::describe(unsigned lane, RawRay& r) const {
   uint32_t f = 0;
-  if (filter_changes_on_this_thread() != before_) f |= capture::kRawFilterChanged;
-  if (context_filter_) f |= capture::kRawContextFilter;
-  return f;
+  if (context_unwatched_) f |= capture::kRawContextFilter;
+  if (unmatched_) f |= capture::kRawFilterChanged;
+  if (lane < kMaxLanes) {
+    const Lane& l = lane_[lane];
+    if (l.changed) f |= capture::kRawFilterChanged;
+    if (l.rejections > 0) {
+      f |= capture::kRawFilterRejected;
+      r.rejected_geom = l.geom, r.rejected_prim = l.prim, r.rejected_inst = l.inst;
+      r.rejections = l.rejections;
+    }
+  }
+  r.flags = f;
 }
 
 }  // namespace vbsim::shim
@@ -96,13 +166,13 @@ using namespace vbsim::shim;
 void rtcSetGeometryIntersectFilterFunction(RTCGeometry geometry, RTCFilterFunctionN filter) {
   VBSIM_REAL(rtcSetGeometryIntersectFilterFunction);
   if (!capture_enabled()) return real(geometry, filter);
-  real(geometry, watched(filter));
+  real(geometry, watched_filter(filter));
   on_filter(geometry, vbsim::capture::kRawIntersectFilter, filter != nullptr);
 }
 
 void rtcSetGeometryOccludedFilterFunction(RTCGeometry geometry, RTCFilterFunctionN filter) {
   VBSIM_REAL(rtcSetGeometryOccludedFilterFunction);
   if (!capture_enabled()) return real(geometry, filter);
-  real(geometry, watched(filter));
+  real(geometry, watched_filter(filter));
   on_filter(geometry, vbsim::capture::kRawOccludedFilter, filter != nullptr);
 }

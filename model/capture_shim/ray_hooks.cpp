@@ -41,6 +41,7 @@ RawRay input(RawOp op, RawApi api, SceneStamp stamp, const float org[3], float t
   r.tfar = tfar;
   r.mask = mask;
   r.geom = r.prim = r.inst = vbsim::capture::kInvalidId;
+  r.rejected_geom = r.rejected_prim = r.rejected_inst = vbsim::capture::kInvalidId;
   return r;
 }
 
@@ -88,13 +89,12 @@ void packet(RawOp op, RawApi api, const int* valid, RTCScene scene, RTCIntersect
       lanes[active] = i;
       saved[active++] = input_of_soa(op, api, stamp, p, N, i);
     }
-  const FilterWatch watch(ctx);
+  FilterWatch watch(ctx, N, true);
   real(valid, scene, ctx, p);
-  const uint32_t flags = watch.flags();
   for (unsigned k = 0; k < active; ++k) {
     if (op == RawOp::Intersect) output_of_soa(saved[k], p, N, lanes[k]);
     else saved[k].hit_t = soa_f(p, N, 8, lanes[k]);
-    saved[k].flags = flags;
+    watch.describe(lanes[k], saved[k]);
     record_ray(saved[k]);
   }
 }
@@ -106,10 +106,12 @@ void rtcIntersect1(RTCScene scene, RTCIntersectContext* ctx, RTCRayHit* rh) {
   if (!capture_enabled()) return real(scene, ctx, rh);
   count_call(RawApi::One, false);
   RawRay r = input_of(RawOp::Intersect, RawApi::One, scene_stamp(scene), rh->ray);
-  const FilterWatch watch(ctx);
-  real(scene, ctx, rh);
+  {
+    FilterWatch watch(ctx, 1, true);
+    real(scene, ctx, rh);
+    watch.describe(0, r);
+  }
   output_of(r, *rh);
-  r.flags = watch.flags();
   record_ray(r);
 }
 
@@ -118,10 +120,12 @@ void rtcOccluded1(RTCScene scene, RTCIntersectContext* ctx, RTCRay* ray) {
   if (!capture_enabled()) return real(scene, ctx, ray);
   count_call(RawApi::One, true);
   RawRay r = input_of(RawOp::Occluded, RawApi::One, scene_stamp(scene), *ray);
-  const FilterWatch watch(ctx);
-  real(scene, ctx, ray);
+  {
+    FilterWatch watch(ctx, 1, true);
+    real(scene, ctx, ray);
+    watch.describe(0, r);
+  }
   r.hit_t = ray->tfar;
-  r.flags = watch.flags();
   record_ray(r);
 }
 
@@ -144,7 +148,7 @@ VBSIM_PACKET_HOOK(rtcOccluded16, RTCRay16, 16, RawOp::Occluded, RawApi::Sixteen)
 namespace {
 
 template <class Ray, class At, class Call>
-void stream(RawOp op, RawApi api, RTCScene scene, const RTCIntersectContext* ctx, unsigned m, At at, Call call) {
+void stream(RawOp op, RawApi api, RTCScene scene, RTCIntersectContext* ctx, unsigned m, At at, Call call) {
   count_call(api, op == RawOp::Occluded);
   const SceneStamp stamp = scene_stamp(scene);
   std::vector<RawRay> saved;  // inputs saved across the call (local: a filter function may trace too)
@@ -157,14 +161,13 @@ void stream(RawOp op, RawApi api, RTCScene scene, const RTCIntersectContext* ctx
       saved.push_back(input_of(op, api, stamp, ray));
     }
   }
-  const FilterWatch watch(ctx);
+  FilterWatch watch(ctx, m, false);  // Embree regroups a stream: filter lanes are not its rays
   call();
-  const uint32_t flags = watch.flags();
   for (std::size_t k = 0; k < saved.size(); ++k) {
     const Ray& r = *at(lanes[k]);
     if constexpr (std::is_same_v<Ray, RTCRayHit>) output_of(saved[k], r);
     else saved[k].hit_t = reinterpret_cast<const RTCRay&>(r).tfar;
-    saved[k].flags = flags;
+    watch.describe(FilterWatch::kMaxLanes, saved[k]);
     record_ray(saved[k]);
   }
 }
@@ -199,7 +202,7 @@ void rtcOccluded1Mp(RTCScene scene, RTCIntersectContext* ctx, RTCRay** ray, unsi
 // Streams of M packets of width N, `stride` bytes apart (RTCRayHitN / RTCRayN blocks).
 namespace {
 
-void packet_stream(RawOp op, RTCScene scene, const RTCIntersectContext* ctx, const void* base, unsigned n,
+void packet_stream(RawOp op, RTCScene scene, RTCIntersectContext* ctx, const void* base, unsigned n,
                    unsigned m, size_t stride, const std::function<void()>& call) {
   count_call(RawApi::NM, op == RawOp::Occluded);
   const SceneStamp stamp = scene_stamp(scene);
@@ -212,14 +215,13 @@ void packet_stream(RawOp op, RTCScene scene, const RTCIntersectContext* ctx, con
         lanes.push_back(j * n + i);
         saved.push_back(input_of_soa(op, RawApi::NM, stamp, block(j), n, i));
       }
-  const FilterWatch watch(ctx);
+  FilterWatch watch(ctx, n * m, false);
   call();
-  const uint32_t flags = watch.flags();
   for (std::size_t k = 0; k < saved.size(); ++k) {
     const unsigned j = lanes[k] / n, i = lanes[k] % n;
     if (op == RawOp::Intersect) output_of_soa(saved[k], block(j), n, i);
     else saved[k].hit_t = soa_f(block(j), n, 8, i);
-    saved[k].flags = flags;
+    watch.describe(FilterWatch::kMaxLanes, saved[k]);
     record_ray(saved[k]);
   }
 }
@@ -263,11 +265,10 @@ void rtcIntersectNp(RTCScene scene, RTCIntersectContext* ctx, const RTCRayHitNp*
   std::vector<RawRay> saved;  // inputs saved across the call (local: a filter function may trace too)
   std::vector<unsigned> lanes;
   save_np(RawOp::Intersect, scene, rh->ray, n, saved, lanes);
-  const FilterWatch watch(ctx);
+  FilterWatch watch(ctx, n, false);
   real(scene, ctx, rh, n);
-  const uint32_t flags = watch.flags();
   for (std::size_t k = 0; k < saved.size(); ++k) {
-    saved[k].flags = flags;
+    watch.describe(FilterWatch::kMaxLanes, saved[k]);
     const unsigned i = lanes[k];
     const RTCHitNp& h = rh->hit;
     set_hit(saved[k], rh->ray.tfar[i], h.Ng_x[i], h.Ng_y[i], h.Ng_z[i], h.u[i], h.v[i], h.primID[i], h.geomID[i],
@@ -281,11 +282,10 @@ void rtcOccludedNp(RTCScene scene, RTCIntersectContext* ctx, const RTCRayNp* ray
   std::vector<RawRay> saved;
   std::vector<unsigned> lanes;
   save_np(RawOp::Occluded, scene, *ray, n, saved, lanes);
-  const FilterWatch watch(ctx);
+  FilterWatch watch(ctx, n, false);
   real(scene, ctx, ray, n);
-  const uint32_t flags = watch.flags();
   for (std::size_t k = 0; k < saved.size(); ++k) {
-    saved[k].flags = flags;
+    watch.describe(FilterWatch::kMaxLanes, saved[k]);
     saved[k].hit_t = ray->tfar[lanes[k]];
     record_ray(saved[k]);
   }

@@ -1,6 +1,7 @@
 #include "scene/embree_reference.h"
 
 #include <cctype>
+#include <stdexcept>
 
 #include <fmt/format.h>
 
@@ -52,14 +53,40 @@ std::string accel_settings(const std::string& tri_accel) {
   return "tri_accel=" + tri_accel;
 }
 
+/// An intersect context that names the triangle its filter rejects.
+struct ExcludingContext {
+  RTCIntersectContext context;  // first: Embree passes its address to the filter
+  uint32_t exclude;
+};
+
+void reject_excluded(const RTCFilterFunctionNArguments* args) {
+  const auto* ctx = reinterpret_cast<const ExcludingContext*>(args->context);
+  for (unsigned i = 0; i < args->N; ++i)
+    if (args->valid[i] != 0 && RTCHitN_primID(args->hit, args->N, i) == ctx->exclude) args->valid[i] = 0;
+}
+
+RTCRay make_ray(Vec3f o, Vec3f d, float tnear, float tfar) {
+  RTCRay r;
+  r.org_x = o.x, r.org_y = o.y, r.org_z = o.z;
+  r.tnear = tnear;
+  r.dir_x = d.x, r.dir_y = d.y, r.dir_z = d.z;
+  r.time = 0.0f;
+  r.tfar = tfar;
+  r.mask = 0xffffffffu;
+  r.id = 0;
+  r.flags = 0;
+  return r;
+}
+
 }  // namespace
 
-EmbreeReference::EmbreeReference(const Scene& scene, const std::string& tri_accel)
-    : device_(std::make_unique<EmbreeDevice>(accel_settings(tri_accel))) {
+EmbreeReference::EmbreeReference(const Scene& scene, const std::string& tri_accel, bool exclusion)
+    : device_(std::make_unique<EmbreeDevice>(accel_settings(tri_accel))), exclusion_(exclusion) {
   scene_ = rtcNewScene(device_->get());
   device_->check("rtcNewScene");
   try {
-    rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
+    rtcSetSceneFlags(scene_, exclusion ? RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION
+                                       : RTC_SCENE_FLAG_ROBUST);
     rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
 
     if (!scene.triangles.empty()) attach_triangles(scene, *device_, scene_);
@@ -120,6 +147,36 @@ bool EmbreeReference::occluded(Vec3f o, Vec3f d, float tnear, float tfar) const 
   query.flags = 0;
   rtcOccluded1(scene_, &context, &query);
   return query.tfar < 0.0f;  // Embree sets tfar to -inf on a hit
+}
+
+bool EmbreeReference::intersect_excluding(Vec3f o, Vec3f d, float tnear, float tfar, int32_t exclude,
+                                          int32_t& prim, float& t, float& u, float& v) const {
+  if (!exclusion_) throw std::logic_error("EmbreeReference::intersect_excluding on a reference built without exclusion");
+  ExcludingContext ctx;
+  rtcInitIntersectContext(&ctx.context);
+  ctx.context.filter = reject_excluded;
+  ctx.exclude = static_cast<uint32_t>(exclude);  // -1: no triangle id
+  RTCRayHit query;
+  query.ray = make_ray(o, d, tnear, tfar);
+  query.hit.geomID = query.hit.primID = query.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(scene_, &ctx.context, &query);
+  if (query.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+  prim = static_cast<int32_t>(query.hit.primID);
+  t = query.ray.tfar;
+  u = query.hit.u;
+  v = query.hit.v;
+  return true;
+}
+
+bool EmbreeReference::occluded_excluding(Vec3f o, Vec3f d, float tnear, float tfar, int32_t exclude) const {
+  if (!exclusion_) throw std::logic_error("EmbreeReference::occluded_excluding on a reference built without exclusion");
+  ExcludingContext ctx;
+  rtcInitIntersectContext(&ctx.context);
+  ctx.context.filter = reject_excluded;
+  ctx.exclude = static_cast<uint32_t>(exclude);
+  RTCRay query = make_ray(o, d, tnear, tfar);
+  rtcOccluded1(scene_, &ctx.context, &query);
+  return query.tfar < 0.0f;
 }
 
 }  // namespace vbsim

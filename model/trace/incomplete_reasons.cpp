@@ -6,7 +6,7 @@ namespace {
 
 const char* const kNames[kIncompleteReasonCount] = {"instance", "quad",  "grid",        "subdivision",    "curve",
                                                     "point",    "user",  "motion_blur", "other_geometry", "filter",
-                                                    "mask"};
+                                                    "mask",     "unlinked"};
 
 }  // namespace
 

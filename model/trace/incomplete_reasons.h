@@ -23,8 +23,11 @@ enum IncompleteReason : uint32_t {
   kIncompleteOtherGeometry = 1u << 8,  ///< any other geometry the trace does not hold
   kIncompleteFilter = 1u << 9,         ///< a filter function rejected or changed a candidate hit, or may have
   kIncompleteMask = 1u << 10,          ///< a geometry the ray's mask hides from it (rtcSetGeometryMask)
+  /// A ray that starts on a surface of the scene but whose parent the capture
+  /// could not find: scored as a camera ray its exact answer would be wrong.
+  kIncompleteUnlinked = 1u << 11,
 };
-constexpr int kIncompleteReasonCount = 11;
+constexpr int kIncompleteReasonCount = 12;
 constexpr uint32_t kIncompleteKnownBits = (1u << kIncompleteReasonCount) - 1;
 
 /// Name of reason bit `index` (0 .. kIncompleteReasonCount-1): "instance", "quad", ...

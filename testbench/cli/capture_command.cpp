@@ -91,7 +91,13 @@ void add_capture_command(CLI::App& app) {
       ->required();
   cmd->add_flag("--binary", args->binary, "write trace.vbt instead of trace.jsonl");
   cmd->add_option("--link-ulps", args->rules.ulps,
-                  "a child's origin may differ from its parent's hit point by this many ulps per axis")
+                  "a child's origin may differ from its parent's hit point by this many ulps per axis (ulps of the "
+                  "largest coordinate of the point, the parent's t d and the hit triangle's vertices)")
+      ->check(CLI::Range(0, 1 << 20))
+      ->capture_default_str();
+  cmd->add_option("--link-rejected-ulps", args->rules.rejected_ulps,
+                  "a ray whose filter functions rejected one primitive links to a recent hit on it within this many "
+                  "ulps (same unit)")
       ->check(CLI::Range(0, 1 << 20))
       ->capture_default_str();
   cmd->add_option("--link-offset", args->rules.normal_offset,

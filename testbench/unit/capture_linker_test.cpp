@@ -112,11 +112,46 @@ TEST_CASE("parent linker: hit point, normal offset, kinds, and what stays unlink
   const auto strict = ParentLinker(scene, exact).link(rays.data(), rays.size(), eligible, c2);
   CHECK(strict[2].parent == -1);
   CHECK(strict[4].parent == 0);
-  // A ray within 4 ulps of the hit point links; 8 ulps off along x does not.
+  // The tolerance is in ulps of the largest of |P| (4.75 here), |t d| (6.25) and the triangle's
+  // vertex coordinates (10: ulp 2^-20, twice the ulp of 6.25): with 4 ulps, a ray 8 ulps of p.x
+  // (4.75: 2^-21) off links, 10 off does not.
+  exact.ulps = 4;
   RawRay near = rays[4];
-  near.org[0] = std::nextafter(std::nextafter(p.x, 10.0f), 10.0f);
+  near.org[0] = p.x;
+  for (int k = 0; k < 8; ++k) near.org[0] = std::nextafter(near.org[0], 10.0f);
   RayLink l;
   CHECK(ParentLinker(scene, exact).origin_matches(cam, scene.triangles()[0], near, l));
-  for (int k = 0; k < 6; ++k) near.org[0] = std::nextafter(near.org[0], 10.0f);
+  for (int k = 0; k < 2; ++k) near.org[0] = std::nextafter(near.org[0], 10.0f);
   CHECK_FALSE(ParentLinker(scene, exact).origin_matches(cam, scene.triangles()[0], near, l));
+}
+
+TEST_CASE("parent linker: finite-tfar intersect children are shadow rays, and a rejected primitive links further",
+          "[capture]") {
+  TempDir dir("capture-linker-rejected");
+  write_file(dir.file("s.bin"), snapshot_bytes());
+  const CapturedScene scene = CapturedScene::read(dir.file("s.bin"));
+  RawRay cam = ray(RawOp::Intersect, {1, 2, 5}, {0.6f, 0, -0.8f});
+  cam.hit_t = 6.25f, cam.geom = 4, cam.prim = 0;
+  const Vec3f p{4.75f, 2, 0};
+  RawRay toward_light = ray(RawOp::Intersect, p, {0, 0.6f, 0.8f});
+  toward_light.tfar = 7.5f;  // a visibility query toward a point, as Cycles casts shadow rays
+  RawRay unbounded = ray(RawOp::Intersect, p, {0.1f, 0.2f, 0.9f});
+  unbounded.tfar = 3.40282347e38f;  // FLT_MAX: an ordinary bounce
+  // 40 ulps of 10 off the hit point: beyond 16 ulps, within 64 of the primitive its filter rejected.
+  RawRay far = ray(RawOp::Intersect, {p.x + 40 * 9.5367431640625e-7f, p.y, 0}, {0.1f, 0.2f, 0.9f});
+  RawRay far_rejected = far;
+  far_rejected.flags = kRawFilterRejected;
+  far_rejected.rejected_geom = 4, far_rejected.rejected_prim = 0, far_rejected.rejected_inst = kInvalidId;
+  RawRay far_other = far_rejected;
+  far_other.rejected_prim = 1;  // the filter rejected another primitive: no hint
+  const std::vector<RawRay> rays = {cam, toward_light, unbounded, far, far_rejected, far_other};
+  LinkCounts counts;
+  const auto links = ParentLinker(scene, LinkRules{}).link(rays.data(), rays.size(),
+                                                           std::vector<bool>(rays.size(), true), counts);
+  CHECK((links[1].parent == 0 && links[1].kind == RayKind::Shadow));
+  CHECK((links[2].parent == 0 && links[2].kind == RayKind::Diffuse));
+  CHECK(links[3].parent == -1);
+  CHECK((links[4].parent == 0 && links[4].tier == LinkTier::RejectedPrimitive));
+  CHECK(links[5].parent == -1);
+  CHECK(counts.rejected_primitive == 1);
 }

@@ -28,7 +28,7 @@ TEST_CASE("incomplete: names in the text form, bits in the binary form, both way
       "{\"id\":0,\"o\":[0,0,5],\"d\":[0,0,-1]}\n"
       "{\"id\":1,\"o\":[0,0,5],\"d\":[0,0,-1],\"incomplete\":[\"instance\",\"filter\"]}\n"
       "{\"id\":2,\"kind\":\"shadow\",\"o\":[0,0,5],\"d\":[0,0,-1],\"incomplete\":[\"quad\",\"grid\",\"subdivision\","
-      "\"curve\",\"point\",\"user\",\"motion_blur\",\"other_geometry\",\"mask\"]}\n";
+      "\"curve\",\"point\",\"user\",\"motion_blur\",\"other_geometry\",\"mask\",\"unlinked\"]}\n";
   write_file(dir.file("t.jsonl"), kHeader + rays);
   auto source = open_trace(dir.file("t.jsonl"));
   const std::vector<TraceRay> got = read_all(*source);
@@ -61,11 +61,11 @@ TEST_CASE("incomplete: an unknown reason or a value that is not a list is refuse
   write_file(dir.file("b.jsonl"), kHeader + "{\"id\":0,\"o\":[0,0,5],\"d\":[0,0,-1],\"incomplete\":\"instance\"}\n");
   e = error_reading(dir.file("b.jsonl"));
   CHECK(e.field == "incomplete");
-  // The binary form: a bit beyond the eleven reasons.
+  // The binary form: a bit beyond the twelve reasons.
   write_file(dir.file("c.jsonl"), kHeader + "{\"id\":0,\"o\":[0,0,5],\"d\":[0,0,-1]}\n");
   convert_trace_file(dir.file("c.jsonl"), dir.file("c.vbt"));
   std::string bytes = read_file(dir.file("c.vbt"));
-  bytes[bytes.size() - 96 + 93] = 0x08;  // bit 11
+  bytes[bytes.size() - 96 + 93] = 0x10;  // bit 12
   write_file(dir.file("c.vbt"), bytes);
   e = error_reading(dir.file("c.vbt"));
   CHECK(e.record == 0);

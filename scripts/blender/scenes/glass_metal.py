@@ -1,0 +1,28 @@
+"""A small Cycles scene: a glass UV sphere, a metallic Suzanne subdivided once, a ground plane
+and a point light (4,898 triangles). For scripts/blender_capture.py."""
+import bpy
+
+
+def principled(name, **inputs):
+    m = bpy.data.materials.new(name)
+    m.use_nodes = True
+    bsdf = m.node_tree.nodes["Principled BSDF"]
+    for k, v in inputs.items():
+        bsdf.inputs[k].default_value = v
+    return m
+
+
+bpy.ops.wm.read_factory_settings(use_empty=True)
+sc = bpy.context.scene
+bpy.ops.mesh.primitive_plane_add(size=10, location=(0, 0, 0))
+bpy.ops.mesh.primitive_uv_sphere_add(radius=0.8, location=(-1.2, 0, 0.8))
+bpy.context.object.data.materials.append(principled("glass", Transmission=1.0, Roughness=0.0))
+bpy.ops.mesh.primitive_monkey_add(size=1.4, location=(1.2, 0, 0.9))
+monkey = bpy.context.object
+sub = monkey.modifiers.new("subdivision", "SUBSURF")
+sub.levels = sub.render_levels = 1
+monkey.data.materials.append(principled("metal", Metallic=1.0, Roughness=0.2))
+bpy.ops.object.light_add(type="POINT", location=(2, -3, 5))
+bpy.context.object.data.energy = 1500
+bpy.ops.object.camera_add(location=(0, -7, 3), rotation=(1.2, 0, 0))
+sc.camera = bpy.context.object
