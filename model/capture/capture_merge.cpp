@@ -133,7 +133,7 @@ MergeResult merge_capture(const std::string& raw_dir, const std::string& out_dir
     }
     throw std::runtime_error(
         "no Embree ray queries were captured: no process of the application loaded a shared libembree3 (a "
-        "statically linked Embree, or Embree 4, cannot be interposed)");
+        "statically linked Embree cannot be interposed: its calls never leave the program)");
   }
   // The trace is the (process, scene, commit) that traced the most rays; ties go to the lowest scene and commit.
   auto best = tally_.rays_by_scene.begin();
@@ -155,7 +155,9 @@ MergeResult merge_capture(const std::string& raw_dir, const std::string& out_dir
         "trace to write; its geometries: {}", key.first, key.second, describe_geometries(scene.geometries(), true)));
   const auto values = read_process_summary(files.summary);
   const bool unwatched_filters = values.count("unwatched_filter_functions") && values.at("unwatched_filter_functions") > 0;
-  const IncompleteRayJudge judge(scene, unwatched_filters);
+  // A summary without the key (the process made no scene through the shim) keeps masks honoured.
+  const bool ray_masks = !values.count("ray_mask_supported") || values.at("ray_mask_supported") != 0;
+  const IncompleteRayJudge judge(scene, unwatched_filters, ray_masks);
 
   // Per thread: eligibility, links, trees.
   std::vector<ThreadRays> threads;
@@ -313,7 +315,7 @@ MergeResult merge_capture(const std::string& raw_dir, const std::string& out_dir
                         {"invalid_by_field", invalid_by_field}, {"first_invalid", first_invalid}}},
       {"hits_outside_captured_triangles", outside_hits},
       {"incomplete", {{"rays", incomplete}, {"by_reason", by_reason},
-                      {"unwatched_filter_functions", unwatched_filters}}},
+                      {"unwatched_filter_functions", unwatched_filters}, {"embree_ray_masks", ray_masks}}},
       {"instances", {{"flattened", scene.has_instances()}, {"rays_checked", judge.flattened_checked()},
                      {"flattened_answer_differs", judge.flattened_differs()}}},
       {"links", {{"at_hit_point", links.at_hit_point}, {"normal_offset", links.normal_offset},

@@ -36,10 +36,10 @@ uint32_t incomplete_reason_of(const CapturedGeometry& g) {
   }
 }
 
-IncompleteRayJudge::IncompleteRayJudge(const CapturedScene& scene, bool unwatched_filters)
+IncompleteRayJudge::IncompleteRayJudge(const CapturedScene& scene, bool unwatched_filters, bool ray_masks)
     : scene_(scene), unwatched_filters_(unwatched_filters) {
   for (const CapturedGeometry& g : scene.geometries()) {
-    if (g.status == RawGeometryStatus::Captured &&
+    if (ray_masks && g.status == RawGeometryStatus::Captured &&
         std::find(masks_.begin(), masks_.end(), g.mask) == masks_.end())
       masks_.push_back(g.mask);
     const uint32_t r = incomplete_reason_of(g);

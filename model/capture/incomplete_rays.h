@@ -36,7 +36,10 @@ uint32_t incomplete_reason_of(const CapturedGeometry& g);
 class IncompleteRayJudge {
  public:
   /// `unwatched_filters`: the process set filter functions the shim could not wrap.
-  IncompleteRayJudge(const CapturedScene& scene, bool unwatched_filters);
+  /// `ray_masks`: the application's Embree honours ray masks (a build option,
+  /// RTC_DEVICE_PROPERTY_RAY_MASK_SUPPORTED); without them it tests every
+  /// geometry whatever the masks, so no ray is marked `mask`.
+  IncompleteRayJudge(const CapturedScene& scene, bool unwatched_filters, bool ray_masks = true);
   ~IncompleteRayJudge();
 
   /// IncompleteReason bits of `r`, a ray traced against `scene` (0: the trace reproduces its answer).
