@@ -7,12 +7,16 @@
 #   VBSIM_FUZZ=1      also install clang and its libFuzzer runtime
 #   --suite           also install the packages the workload suite's scenes come from
 #                     (scripts/suite.py, traces/suite/scenes.json, docs/suite.md)
+#   --open3d          also install Debian's Open3D (python3-open3d, without its recommends),
+#                     for the capture test of its RaycastingScene (docs/capture.md, "Open3D")
 set -euo pipefail
 suite=0
+open3d=0
 for arg in "$@"; do
   case "$arg" in
     --suite) suite=1 ;;
-    *) echo "usage: scripts/setup.sh [--suite]" >&2; exit 2 ;;
+    --open3d) open3d=1 ;;
+    *) echo "usage: scripts/setup.sh [--suite] [--open3d]" >&2; exit 2 ;;
   esac
 done
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -59,6 +63,16 @@ if ((${#missing[@]} + ${#missing_lean[@]})); then
     DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends \
       "${missing_lean[@]}" >&2
   fi
+fi
+
+# Open3D's Python module and its libraries, without the packages it only recommends (large
+# all the same: a few hundred MB with its dependencies).
+if [ "$open3d" = 1 ] && ! dpkg-query -W -f='${Status}' python3-open3d 2>/dev/null | grep -q "install ok installed"; then
+  echo "vbsim setup: installing python3-open3d" >&2
+  sudo_cmd=()
+  [ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
+  "${sudo_cmd[@]}" apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends python3-open3d >&2
 fi
 
 build="${VBSIM_BUILD_DIR:-$root/build}"

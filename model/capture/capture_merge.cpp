@@ -148,7 +148,7 @@ MergeResult merge_capture(const std::string& raw_dir, const std::string& out_dir
     }
     throw std::runtime_error(
         "no Embree ray queries were captured: no process of the application loaded a shared libembree3 (a "
-        "statically linked Embree, or Embree 4, cannot be interposed)");
+        "statically linked Embree cannot be interposed: its calls never leave the program)");
   }
   // The trace is the (process, scene, commit) that traced the most rays; ties go to the lowest scene and commit.
   auto best = tally_.rays_by_scene.begin();
@@ -170,7 +170,9 @@ MergeResult merge_capture(const std::string& raw_dir, const std::string& out_dir
         "trace to write; its geometries: {}", key.first, key.second, describe_geometries(scene.geometries(), true)));
   const auto values = read_process_summary(files.summary);
   const bool unwatched_filters = values.count("unwatched_filter_functions") && values.at("unwatched_filter_functions") > 0;
-  IncompleteRayJudge judge(scene, unwatched_filters, opt.rules.on_surface_ulps);
+  // A summary without the key (the process made no scene through the shim) keeps masks honoured.
+  const bool ray_masks = !values.count("ray_mask_supported") || values.at("ray_mask_supported") != 0;
+  IncompleteRayJudge judge(scene, unwatched_filters, opt.rules.on_surface_ulps, ray_masks);
 
   // Per thread: eligibility, links, trees.
   std::vector<ThreadRays> threads;
@@ -336,7 +338,7 @@ MergeResult merge_capture(const std::string& raw_dir, const std::string& out_dir
                         {"invalid_by_field", invalid_by_field}, {"first_invalid", first_invalid}}},
       {"hits_outside_captured_triangles", outside_hits},
       {"incomplete", {{"rays", incomplete}, {"by_reason", by_reason},
-                      {"unwatched_filter_functions", unwatched_filters}}},
+                      {"unwatched_filter_functions", unwatched_filters}, {"embree_ray_masks", ray_masks}}},
       {"self_excluded", judge.self_excluded_rays()},
       {"renderer_excludes_parents", excludes_parents},
       {"instances", {{"flattened", scene.has_instances()}, {"rays_checked", judge.flattened_checked()},

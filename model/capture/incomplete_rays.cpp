@@ -36,7 +36,8 @@ uint32_t incomplete_reason_of(const CapturedGeometry& g) {
   }
 }
 
-IncompleteRayJudge::IncompleteRayJudge(const CapturedScene& scene, bool unwatched_filters, int on_surface_ulps)
+IncompleteRayJudge::IncompleteRayJudge(const CapturedScene& scene, bool unwatched_filters, int on_surface_ulps,
+                                       bool ray_masks)
     : scene_(scene), unwatched_filters_(unwatched_filters) {
   float extent = 0.0f;
   for (const Triangle& t : scene.triangles())
@@ -46,7 +47,7 @@ IncompleteRayJudge::IncompleteRayJudge(const CapturedScene& scene, bool unwatche
   on_surface_radius_ = on_surface_ulps * (std::nextafter(extent, INFINITY) - extent);
   if (!scene.triangles().empty()) surfaces_ = std::make_unique<SurfaceProximity>(scene.triangles());
   for (const CapturedGeometry& g : scene.geometries()) {
-    if (g.status == RawGeometryStatus::Captured &&
+    if (ray_masks && g.status == RawGeometryStatus::Captured &&
         std::find(masks_.begin(), masks_.end(), g.mask) == masks_.end())
       masks_.push_back(g.mask);
     const uint32_t r = incomplete_reason_of(g);

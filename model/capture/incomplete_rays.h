@@ -43,7 +43,12 @@ uint32_t incomplete_reason_of(const CapturedGeometry& g);
 class IncompleteRayJudge {
  public:
   /// `unwatched_filters`: the process set filter functions the shim could not wrap.
-  IncompleteRayJudge(const CapturedScene& scene, bool unwatched_filters, int on_surface_ulps);
+  /// `on_surface_ulps`: a parentless ray within this many ulps of the scene's
+  /// largest coordinate from a triangle starts on a surface (marked `unlinked`).
+  /// `ray_masks`: the application's Embree honours ray masks (a build option,
+  /// RTC_DEVICE_PROPERTY_RAY_MASK_SUPPORTED); without them it tests every
+  /// geometry whatever the masks, so no ray is marked `mask`.
+  IncompleteRayJudge(const CapturedScene& scene, bool unwatched_filters, int on_surface_ulps, bool ray_masks = true);
   ~IncompleteRayJudge();
 
   /// IncompleteReason bits of `r`, a ray traced against `scene` (0: the trace

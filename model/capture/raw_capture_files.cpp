@@ -22,6 +22,7 @@ std::map<ProcessImage, ProcessFiles> find_capture_files(const std::string& dir) 
   static const std::regex rays_name(R"(rays-(\d+)\.(\d+)-(\d+)\.bin)");
   static const std::regex scene_name(R"(scene-(\d+)\.(\d+)-(\d+)-(\d+)\.bin)");
   static const std::regex summary_name(R"(process-(\d+)\.(\d+)\.txt)");
+  static const std::regex refusal_name(R"(refused-(\d+)\.(\d+)\.txt)");
   std::map<ProcessImage, ProcessFiles> out;
   auto image_of = [](const std::smatch& m) {
     return ProcessImage{std::stol(m[1]), static_cast<unsigned>(std::stoul(m[2]))};
@@ -37,11 +38,28 @@ std::map<ProcessImage, ProcessFiles> find_capture_files(const std::string& dir) 
           path;
     } else if (std::regex_match(name, m, summary_name)) {
       out[image_of(m)].summary = path;
+    } else if (std::regex_match(name, m, refusal_name)) {
+      out[image_of(m)].refusal = path;
     }
   }
   if (ec) throw std::runtime_error(fmt::format("{}: cannot read the capture directory: {}", dir, ec.message()));
   for (auto& [id, p] : out) p.id = id;
   return out;
+}
+
+std::string read_refusals(const std::string& dir) {
+  constexpr std::size_t kMaxReason = 2000;  // a reason is one line; more is not the shim's
+  std::string all;
+  for (const auto& [id, p] : find_capture_files(dir)) {
+    if (p.refusal.empty()) continue;
+    std::ifstream in(p.refusal);
+    std::string reason;
+    std::getline(in, reason);
+    if (reason.size() > kMaxReason) reason.resize(kMaxReason);
+    if (reason.empty()) reason = "(no reason given)";
+    all += fmt::format("{}process {}: {}", all.empty() ? "" : "; ", id.pid, reason);
+  }
+  return all;
 }
 
 std::map<std::string, uint64_t> read_process_summary(const std::string& path) {

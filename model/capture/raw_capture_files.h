@@ -30,11 +30,16 @@ struct ProcessFiles {
   std::string summary;                                   ///< process-<image>.txt, empty when missing
   std::map<int, std::string> ray_files;                  ///< thread index -> rays-<image>-<k>.bin
   std::map<std::pair<uint32_t, uint32_t>, std::string> scenes;  ///< (scene, commit) -> snapshot
+  std::string refusal;                                   ///< refused-<image>.txt, empty when none
 };
 
 /// Every process image that left files in `dir`. Throws std::runtime_error
 /// naming the directory when it cannot be read.
 std::map<ProcessImage, ProcessFiles> find_capture_files(const std::string& dir);
+
+/// Why the shim refused to capture process images in `dir` (refused-<image>.txt),
+/// one "process P: reason" per image joined by "; ", or "" when it refused none.
+std::string read_refusals(const std::string& dir);
 
 /// The "key value" lines of a process summary; throws naming the file when
 /// unreadable. A summary without "complete 1" is one the image never finished

@@ -20,15 +20,26 @@
 //                               "key value" lines (calls and rays per API,
 //                               threads, scenes, commits, whether a shared
 //                               libembree3 was loaded, filter functions the
-//                               shim could not watch, ended_by_exec) ending
+//                               shim could not watch, whether Embree
+//                               honours ray masks, ended_by_exec) ending
 //                               with "complete 1"; without that line the
 //                               image did not finish
+//   refused-<image>.txt         why the shim refused to capture the image
+//                               (one line of text): Embree out of its reach
+//                               (dlmopen, Embree 4). Written when the image
+//                               tried to use such an Embree, after which the
+//                               shim ended it with kShimRefusedStatus, or at
+//                               its exit; `vbsim capture` then writes no trace
 #pragma once
 #include <cstdint>
 
 namespace vbsim::capture {
 
 constexpr const char* kCaptureDirEnv = "VBSIM_CAPTURE_DIR";
+
+/// The exit status the shim ends a process with when it refuses to capture it
+/// (after writing refused-<image>.txt and the reason on stderr).
+constexpr int kShimRefusedStatus = 70;
 
 enum class RawOp : uint16_t { Intersect = 1, Occluded = 2 };
 

@@ -12,6 +12,7 @@
 #include <mutex>
 #include <vector>
 
+#include "embree_library.h"
 #include "filter_watch.h"
 
 namespace vbsim::shim {
@@ -48,6 +49,7 @@ struct Process {
   std::atomic<uint64_t> calls[2][capture::kRawApiCount] = {};
   std::atomic<uint64_t> rays[2][capture::kRawApiCount] = {};
   std::atomic<uint64_t> scenes{0}, commits{0};
+  std::atomic<int> ray_masks{-1};  // RTC_DEVICE_PROPERTY_RAY_MASK_SUPPORTED once known, else -1
 };
 
 Process& process() {
@@ -167,9 +169,10 @@ void write_summary(bool before_exec) {
   s += "scenes " + std::to_string(p.scenes.load()) + "\n";
   s += "commits " + std::to_string(p.commits.load()) + "\n";
   s += std::string("write_failed ") + (p.write_failed ? "1" : "0") + "\n";
-  // A shared libembree3 after the shim: what the interposed functions call (absent when the
-  // program links Embree statically or not at all).
-  s += std::string("embree_loaded ") + (dlsym(RTLD_NEXT, "rtcNewDevice") ? "1" : "0") + "\n";
+  // A shared libembree3 in the program's namespace, linked or dlopened: what the interposed
+  // functions call (absent when the program links Embree statically or not at all).
+  s += std::string("embree_loaded ") + (embree_loaded() ? "1" : "0") + "\n";
+  if (p.ray_masks.load() >= 0) s += "ray_mask_supported " + std::to_string(p.ray_masks.load()) + "\n";
   s += "unwatched_filter_functions " + std::to_string(unwatched_filter_functions()) + "\n";
   s += std::string("ended_by_exec ") + (before_exec ? "1" : "0") + "\n";
   s += "complete 1\n";
@@ -188,6 +191,9 @@ __attribute__((destructor)) void finish_capture() {
       close_locked(*b);
     }
   }
+  // An Embree the shim never saw (dlmopen) may have traced: the capture is not whole.
+  const std::string out_of_reach = embree_out_of_reach();
+  if (!out_of_reach.empty()) write_capture_file("refused-" + claimed_image() + ".txt", out_of_reach + "\n");
   write_summary(false);
 }
 
@@ -268,6 +274,16 @@ void prepare_for_exec() {
   }
   write_summary(true);
 }
+void refuse_capture(const std::string& why) {
+  Process& p = process();
+  if (p.enabled && !p.closing.exchange(true)) write_capture_file("refused-" + claimed_image() + ".txt", why + "\n");
+  const std::string line = "vbsim capture shim: " + why + "\n";
+  (void)!::write(2, line.data(), line.size());
+  ::_exit(capture::kShimRefusedStatus);
+}
+
+void note_ray_masks(bool supported) { process().ray_masks.store(supported ? 1 : 0); }
+
 void count_scene() { process().scenes.fetch_add(1); }
 void count_commit() { process().commits.fetch_add(1); }
 

@@ -34,6 +34,16 @@ std::string capture_image();
 /// fails, capture goes on and the summary is written again at exit.
 void prepare_for_exec();
 
+/// Refuses to capture this process image: writes `why` as refused-<image>.txt
+/// (when capturing) and on stderr, and ends the process with
+/// capture::kShimRefusedStatus without running its exit handlers, before it
+/// traces through an Embree the shim cannot see.
+[[noreturn]] void refuse_capture(const std::string& why);
+
+/// Whether the application's Embree honours ray masks (its device's
+/// RTC_DEVICE_PROPERTY_RAY_MASK_SUPPORTED), for the summary.
+void note_ray_masks(bool supported);
+
 /// Counts scenes created and commits seen, for the summary.
 void count_scene();
 void count_commit();

@@ -34,37 +34,37 @@ std::vector<char*> collect_arguments(const char* first, va_list& ap) {
 extern "C" {
 
 int execve(const char* path, char* const argv[], char* const envp[]) noexcept {
-  VBSIM_REAL(execve);
+  VBSIM_REAL_LIBC(execve);
   before_exec();
   return real(path, argv, envp);
 }
 
 int execv(const char* path, char* const argv[]) noexcept {
-  VBSIM_REAL(execv);
+  VBSIM_REAL_LIBC(execv);
   before_exec();
   return real(path, argv);
 }
 
 int execvp(const char* file, char* const argv[]) noexcept {
-  VBSIM_REAL(execvp);
+  VBSIM_REAL_LIBC(execvp);
   before_exec();
   return real(file, argv);
 }
 
 int execvpe(const char* file, char* const argv[], char* const envp[]) noexcept {
-  VBSIM_REAL(execvpe);
+  VBSIM_REAL_LIBC(execvpe);
   before_exec();
   return real(file, argv, envp);
 }
 
 int fexecve(int fd, char* const argv[], char* const envp[]) noexcept {
-  VBSIM_REAL(fexecve);
+  VBSIM_REAL_LIBC(fexecve);
   before_exec();
   return real(fd, argv, envp);
 }
 
 int execl(const char* path, const char* arg, ...) noexcept {
-  VBSIM_REAL(execv);
+  VBSIM_REAL_LIBC(execv);
   va_list ap;
   va_start(ap, arg);
   const std::vector<char*> argv = collect_arguments(arg, ap);
@@ -74,7 +74,7 @@ int execl(const char* path, const char* arg, ...) noexcept {
 }
 
 int execlp(const char* file, const char* arg, ...) noexcept {
-  VBSIM_REAL(execvp);
+  VBSIM_REAL_LIBC(execvp);
   va_list ap;
   va_start(ap, arg);
   const std::vector<char*> argv = collect_arguments(arg, ap);
@@ -84,7 +84,7 @@ int execlp(const char* file, const char* arg, ...) noexcept {
 }
 
 int execle(const char* path, const char* arg, ...) noexcept {
-  VBSIM_REAL(execve);
+  VBSIM_REAL_LIBC(execve);
   va_list ap;
   va_start(ap, arg);
   const std::vector<char*> argv = collect_arguments(arg, ap);

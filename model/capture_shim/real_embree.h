@@ -1,30 +1,17 @@
-// The application's Embree functions behind the shim's interposed ones: each
-// is looked up once with dlsym(RTLD_NEXT), i.e. in the libraries loaded after
-// the preloaded shim (libembree3). The shim calls nothing else of Embree.
+// The functions behind the shim's interposed ones, each looked up once on
+// first use: the application's Embree 3 for the Embree hooks (where it is
+// found: embree_library.h) and the C library for the exec hooks. Neither
+// lookup returns without a function: when there is none the capture is
+// refused (refuse_capture), never aborted.
 #pragma once
-#include <dlfcn.h>
-
-#include <cstdio>
-#include <cstdlib>
-
 #include <embree3/rtcore.h>
 
-namespace vbsim::shim {
+#include "embree_library.h"
 
-/// The next definition of `name` (a function of type F) after the shim's own.
-template <class F>
-F next_definition(const char* name) {
-  void* f = dlsym(RTLD_NEXT, name);
-  if (!f) {
-    std::fprintf(stderr, "vbsim capture shim: %s not found after the shim (is the application linked to Embree 3?)\n",
-                 name);
-    std::abort();
-  }
-  return reinterpret_cast<F>(f);
-}
-
-}  // namespace vbsim::shim
-
-/// Declares `real` as the application's own `name`, resolved on first use.
+/// Declares `real` as the application's own Embree function `name`, resolved on first use.
 #define VBSIM_REAL(name) \
-  static const auto real = ::vbsim::shim::next_definition<decltype(&::name)>(#name)
+  static const auto real = reinterpret_cast<decltype(&::name)>(::vbsim::shim::embree_function(#name))
+
+/// Declares `real` as the C library's `name` (the next definition after the shim's), resolved on first use.
+#define VBSIM_REAL_LIBC(name) \
+  static const auto real = reinterpret_cast<decltype(&::name)>(::vbsim::shim::next_function(#name))

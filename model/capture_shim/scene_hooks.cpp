@@ -10,7 +10,13 @@ using namespace vbsim::shim;
 RTCScene rtcNewScene(RTCDevice device) {
   VBSIM_REAL(rtcNewScene);
   RTCScene scene = real(device);
-  if (scene && capture_enabled()) on_new_scene(scene);
+  if (scene && capture_enabled()) {
+    // Whether Embree skips geometry a ray's mask hides (a build option): a read-only query.
+    static const auto property =
+        reinterpret_cast<decltype(&::rtcGetDeviceProperty)>(embree_function("rtcGetDeviceProperty"));
+    note_ray_masks(property(device, RTC_DEVICE_PROPERTY_RAY_MASK_SUPPORTED) != 0);
+    on_new_scene(scene);
+  }
   return scene;
 }
 

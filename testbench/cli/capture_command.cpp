@@ -8,6 +8,7 @@
 
 #include "capture/application_launch.h"
 #include "capture/capture_merge.h"
+#include "capture/raw_capture_files.h"
 #include "commands.h"
 #include "exit_codes.h"
 #include "io/stale_temporaries.h"
@@ -47,6 +48,13 @@ void run_capture(const CaptureArgs& a) {
     else fs::remove_all(files);
     fmt::print(stderr, "vbsim: interrupted\n");
     throw CLI::RuntimeError(kExitInterrupted);
+  }
+  // The shim refused an Embree out of its reach (dlmopen, Embree 4): it ended
+  // the application before it traced there, or wrote why at its exit.
+  if (const std::string refused = capture::read_refusals(files.string()); !refused.empty()) {
+    settle_raw(files, raw);
+    throw std::runtime_error(fmt::format("cannot capture {}: {}; no trace written (the shim's files are in {})",
+                                         a.command[0], refused, raw.string()));
   }
   if (!run.exited_normally()) {
     settle_raw(files, raw);
