@@ -121,12 +121,23 @@ std::vector<RayLink> ParentLinker::link(const RawRay* rays, std::size_t n, const
     const RawRay& r = rays[i];
     const bool occluded = r.op == static_cast<uint16_t>(RawOp::Occluded);
     RayLink& l = links[i];
+    // The newest matching hit; among them, for a ray whose filters rejected one
+    // primitive, the newest on that primitive (two coplanar surfaces give two
+    // hits at one point: the renderer's exclusion names the one it left).
+    auto chosen = recent.rend();
     for (auto it = recent.rbegin(); it != recent.rend(); ++it) {
-      if (!matches(*it, r, l)) continue;
-      const Triangle& tri = scene_.triangles()[static_cast<std::size_t>(it->triangle)];
-      l.parent = static_cast<int64_t>(it->index);
-      l.kind = occluded ? RayKind::Shadow : infer_kind(rays[it->index], tri, r);
-      break;
+      RayLink m;
+      if (!matches(*it, r, m)) continue;
+      const RawRay& h = rays[it->index];
+      const bool named = (r.flags & kRawFilterRejected) && r.rejected_geom == h.geom && r.rejected_prim == h.prim &&
+                         r.rejected_inst == h.inst;
+      if (chosen == recent.rend() || named) chosen = it, l.tier = m.tier, l.offset = m.offset;
+      if (named || !(r.flags & kRawFilterRejected)) break;
+    }
+    if (chosen != recent.rend()) {
+      const Triangle& tri = scene_.triangles()[static_cast<std::size_t>(chosen->triangle)];
+      l.parent = static_cast<int64_t>(chosen->index);
+      l.kind = occluded ? RayKind::Shadow : infer_kind(rays[chosen->index], tri, r);
     }
     if (l.parent < 0 && (r.flags & kRawFilterRejected))
       for (auto it = recent.rbegin(); it != recent.rend(); ++it) {
@@ -150,7 +161,7 @@ std::vector<RayLink> ParentLinker::link(const RawRay* rays, std::size_t n, const
       counts.max_offset = std::max(counts.max_offset, l.offset);
     }
     ++counts.by_kind[static_cast<int>(l.kind)];
-    if (is_hit(r)) {
+    if (is_hit(r) && l.kind != RayKind::Shadow) {  // a visibility query spawns nothing
       const int64_t tri = scene_.triangle_hit(r).triangle;
       if (tri >= 0) {
         recent.push_back(candidate(i, r, tri, scene_.triangles()[static_cast<std::size_t>(tri)]));

@@ -6,7 +6,9 @@
 // the triangle's vertex coordinates, which bounds the rounding of both), optionally
 // moved along the hit triangle's geometric normal (the offset renderers apply
 // before spawning, e.g. Embree's own tutorials). The newest matching hit of
-// the last `history` hits wins. Kinds: an occlusion query is a shadow ray, and
+// the last `history` hits wins, or, for a ray whose filter functions rejected
+// one primitive, the newest matching hit on that primitive; hits of shadow
+// rays are never parents. Kinds: an occlusion query is a shadow ray, and
 // so is an intersect child with a finite tfar below FLT_MAX (a visibility
 // query toward a point, as Cycles casts its shadow rays); an
 // intersect child that leaves on the far side of the surface is refract, one

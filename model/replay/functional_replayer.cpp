@@ -4,6 +4,10 @@
 #include "datapath/testers.h"
 #include "exact/oracle.h"
 
+#include <stdexcept>
+
+#include <fmt/format.h>
+
 namespace vbsim {
 
 RayOutcome conclude_ray(const TraceRay& tr, const EmittedRay& er, const Hit& hit, uint64_t rejected,
@@ -37,10 +41,39 @@ RayOutcome conclude_ray(const TraceRay& tr, const EmittedRay& er, const Hit& hit
   return out;
 }
 
+namespace {
+
+/// The renderer's own answer of `tr` as a hit (ReplayOptions::reference_answers).
+Hit reference_hit(const TraceRay& tr, const Scene& scene) {
+  if (!tr.has_reference)
+    throw std::runtime_error(fmt::format(
+        "ray {} carries no reference answer (the renderer's own, as a capture's trace holds): the renderer row "
+        "needs one on every ray", tr.id));
+  Hit hit;
+  if (tr.reference_prim >= 0) {
+    hit.prim = tr.reference_prim;
+    hit.t = tr.has_reference_t ? tr.reference_t : 0.0f;
+  } else if (tr.reference_prim == kReferenceOccluded && !scene.triangles.empty()) {
+    hit.prim = 0;  // occluded by an unnamed triangle: judged by visibility (a wrong one as false_hit)
+  }
+  return hit;
+}
+
+}  // namespace
+
 RayOutcome replay_one_ray(const TraceRay& tr, const Scene& scene, const Bvh& bvh,
                           const ReplayOptions& opt, const CandidateFilter& filter,
                           const ParentRay* parent, KindStats& ks) {
   const EmittedRay er = emit_ray(tr, scene, opt, parent);
+  if (opt.reference_answers) {
+    RayOutcome out = conclude_ray(tr, er, reference_hit(tr, scene), 0, scene, opt.score_incomplete, ks);
+    if (tr.reference_prim == kReferenceOccluded && out.verdict == Verdict::SelfHit) {
+      --ks.verdicts[static_cast<int>(Verdict::SelfHit)];
+      ++ks.verdicts[static_cast<int>(Verdict::FalseHit)];
+      out.verdict = Verdict::FalseHit;
+    }
+    return out;
+  }
   const bool any_hit = search_stops_at_any_hit(opt, tr, er);
   const uint64_t rejected_before = ks.candidates.rejected;
   Hit hit;

@@ -31,6 +31,12 @@ struct ReplayOptions {
   /// Score rays marked `incomplete` (their renderer's answer involved what the
   /// trace does not hold); by default they are replayed but left unscored.
   bool score_incomplete = false;
+  /// Judge each ray's `reference` answer (the capturing renderer's own, e.g.
+  /// Cycles' primitive-ID exclusion on Embree) instead of searching: the
+  /// `renderer` row of `vbsim score`. A ray without one is an error. An
+  /// occlusion query's wrong "occluded" counts as false_hit: Embree does not
+  /// say which triangle occluded it.
+  bool reference_answers = false;
 };
 
 }  // namespace vbsim

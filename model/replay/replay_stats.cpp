@@ -189,7 +189,7 @@ nlohmann::json bvh_options_json(const BvhBuildOptions& b) {
 nlohmann::json replay_config_json(const ReplayOptions& opt) {
   const SelfIntersectionMethod& m = opt.method;
   const AvoidanceConfig& a = m.avoidance;
-  return {{"method", m.name()},
+  nlohmann::json j = {{"method", m.name()},
           {"tester", tester_name(opt.tester)},
           {"hitpoint", hit_point_mode_name(opt.hit_point)},
           {"bits_per_ray", m.bits_per_ray()},
@@ -211,6 +211,8 @@ nlohmann::json replay_config_json(const ReplayOptions& opt) {
             {"tests", {{"normal", a.test_normal}, {"ray", a.test_ray}, {"component", a.test_component}}},
             {"component_scale", a.component_scale},
             {"weights", {{"normal", a.weight_normal}, {"ray", a.weight_ray}, {"component", a.weight_component}}}}}};
+  if (opt.reference_answers) j["answers"] = "reference";  // the renderer's own, judged; no search
+  return j;
 }
 
 }  // namespace vbsim

@@ -18,6 +18,10 @@
 
 namespace vbsim {
 
+/// The entry that scores the trace's reference answers (the capturing
+/// renderer's own) instead of a method: a capture's `renderer` row.
+constexpr const char* kRendererMethod = "renderer";
+
 struct MethodSpec {
   std::string label;  ///< the entry as written: the row label of a score table
   ReplayOptions options;

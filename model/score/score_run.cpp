@@ -37,7 +37,8 @@ bool same_verdicts(const ReplayStats& a, const ReplayStats& b) {
 }
 
 bool measures_cycles(const ScoreRunOptions& run, const ScoreConfig& c) {
-  return run.cycle && std::find(run.cycle_testers.begin(), run.cycle_testers.end(), c.options.tester) !=
+  // The renderer's own answers come from no search of the modelled hardware: nothing to time.
+  return run.cycle && !c.options.reference_answers && std::find(run.cycle_testers.begin(), run.cycle_testers.end(), c.options.tester) !=
                           run.cycle_testers.end();
 }
 

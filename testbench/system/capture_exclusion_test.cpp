@@ -130,3 +130,31 @@ TEST_CASE("capture: a ray that starts on a surface but links to no parent is mar
   for (const TraceRay& r : trace)
     if (r.parent < 0) CHECK((r.incomplete != 0) == (r.o != Vec3f{0.0f, -4.0f, 0.5f}));
 }
+
+TEST_CASE("score: the renderer row judges the capturing renderer's own answers, and a trace without them is refused",
+          "[cli][capture][filter][score]") {
+  const ExclusionCapture c = capture_mode("geometry");
+  REQUIRE(c.capture.exit_code == 0);
+  REQUIRE(primid_differences(c) == 0);  // also writes scored.jsonl
+  const auto json_path = c.dir / "score.json";
+  const RunResult r = run_vbsim(fmt::format("score {} --methods renderer,primid --testers moller-trumbore --out {}",
+                                            (c.dir / "scored.jsonl").string(), json_path.string()));
+  INFO(r.output);
+  REQUIRE(r.exit_code == 0);
+  const auto table = nlohmann::json::parse(read_file(json_path));
+  nlohmann::json renderer, primid;
+  for (const auto& row : table["rows"])
+    if (row["kind"] == "all") (row["method"] == "renderer" ? renderer : primid) = row;
+  REQUIRE(renderer.is_object());
+  REQUIRE(primid.is_object());
+  // The application's answers are primid's ray for ray (above), so their verdicts are too.
+  CHECK(renderer["counts"] == primid["counts"]);
+  CHECK(renderer["config"]["answers"] == "reference");
+  CHECK(renderer["counts"]["correct"].get<int64_t>() > 0);
+
+  // A trace that carries no renderer's answers: an error naming the ray, no row.
+  const RunResult bad = run_vbsim(fmt::format("score {}/traces/bunny/paths.jsonl --methods renderer -q",
+                                              source_dir()));
+  CHECK(bad.exit_code == 1);
+  CHECK_THAT(bad.output, Catch::Contains("carries no reference answer"));
+}
