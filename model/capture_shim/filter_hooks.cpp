@@ -79,6 +79,12 @@ constexpr std::array<RTCFilterFunctionN, sizeof...(K)> make_trampolines(std::ind
 }
 constexpr auto kTrampolineTable = make_trampolines(std::make_index_sequence<kTrampolines>{});
 
+bool is_trampoline(RTCFilterFunctionN f) {
+  for (RTCFilterFunctionN t : kTrampolineTable)
+    if (t == f) return true;
+  return false;
+}
+
 }  // namespace
 
 RTCFilterFunctionN watched_filter(RTCFilterFunctionN f) {
@@ -111,7 +117,8 @@ uint64_t unwatched_filter_functions() { return g_unwatched.load(); }
 
 FilterWatch::FilterWatch(RTCIntersectContext* ctx, unsigned lanes, bool attributable)
     : lanes_(lanes), attributable_(attributable && lanes <= kMaxLanes), ctx_(ctx), outer_(t_watch) {
-  if (ctx && ctx->filter) {
+  // A context already swapped (a filter tracing with its call's own context) stays as it is.
+  if (ctx && ctx->filter && !is_trampoline(ctx->filter)) {
     context_filter_ = ctx->filter;
     const RTCFilterFunctionN t = watched_filter(ctx->filter);
     context_unwatched_ = t == ctx->filter;
