@@ -7,6 +7,7 @@
 #include <filesystem>
 
 #include "capture/application_launch.h"
+#include "capture/static_embree_check.h"
 #include "capture/capture_merge.h"
 #include "capture/raw_capture_files.h"
 #include "commands.h"
@@ -33,6 +34,9 @@ void settle_raw(const std::filesystem::path& files, const std::filesystem::path&
 
 void run_capture(const CaptureArgs& a) {
   namespace fs = std::filesystem;
+  // A program with Embree linked into it is refused before it runs.
+  if (const std::string why = capture::embree_defined_by_program(a.command); !why.empty())
+    throw std::runtime_error(fmt::format("cannot capture {}: {}", a.command.front(), why));
   const fs::path raw = fs::path(a.out) / "raw";
   // The shim writes into a directory of this run's own (two captures into one
   // OUT do not mix), named as every temporary is (NAME.partial-PID-N), so
