@@ -42,6 +42,11 @@ fi
 # blender: Blender's Cycles renders through the shared libembree3, so `vbsim capture` traces it
 # unmodified (scripts/blender_capture.py, docs/capture.md); without its recommended packages.
 lean_packages=(blender)
+# --open3d: Open3D's Python module and its libraries, without the packages it only
+# recommends (large all the same: a few hundred MB with its dependencies).
+if [ "$open3d" = 1 ]; then
+  lean_packages+=(python3-open3d)
+fi
 
 missing_of() {
   local p
@@ -63,16 +68,6 @@ if ((${#missing[@]} + ${#missing_lean[@]})); then
     DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends \
       "${missing_lean[@]}" >&2
   fi
-fi
-
-# Open3D's Python module and its libraries, without the packages it only recommends (large
-# all the same: a few hundred MB with its dependencies).
-if [ "$open3d" = 1 ] && ! dpkg-query -W -f='${Status}' python3-open3d 2>/dev/null | grep -q "install ok installed"; then
-  echo "vbsim setup: installing python3-open3d" >&2
-  sudo_cmd=()
-  [ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
-  "${sudo_cmd[@]}" apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends python3-open3d >&2
 fi
 
 build="${VBSIM_BUILD_DIR:-$root/build}"
