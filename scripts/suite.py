@@ -91,7 +91,8 @@ def make_type_traces(a, entry, meta, work):
     answers; returns {type: {"trace", "rays", "source_rays", "source"}} and the
     source runs' figures."""
     diag = sum((h - l) ** 2 for l, h in zip(*meta["bounds"])) ** 0.5
-    commands = rays.source_commands(a.vbsim, meta["ply"], scenes.point_light(meta), a, work)
+    commands = rays.source_commands(a.vbsim, meta["ply"], scenes.point_light(meta), a, work,
+                                    scenes.pathtracer_camera(meta))
     needed = sorted({rays.SOURCE_OF[t] for t in a.types})
     out, sources = {}, {}
     for src in needed:

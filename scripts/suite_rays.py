@@ -1,15 +1,19 @@
 """The workload suite's ray types, made with vbsim's own commands and split into
 one trace per type (docs/suite.md, "Ray types").
 
-Three sources per scene, each a reference run (children from the exact answers,
-so the rays do not depend on a method):
+Four sources per scene; the first three are reference runs (children from the
+exact answers, so the rays do not depend on a method):
 - `vbsim render --integrator mirror`: primary rays, shadow rays toward the
   point light, mirror (reflect) rays;
 - `vbsim render --integrator path --bounces 3`: diffuse rays by bounce (1, 2,
   3: how many diffuse rays lie between the ray and its camera ray, plus one),
   and the ambient-occlusion rays derived from the first bounce (below);
 - `vbsim gen paths --set depth=3`: glass (refract) rays of its camera paths
-  (ior 1.5; the renderer has no glass material).
+  (ior 1.5; the renderer has no glass material);
+- `vbsim capture --strip-offsets -- pathtracer`: Embree's own path tracer
+  (embree-tools) on the scene, one thread: the `pathtracer` type is its whole
+  trace, camera rays, shadow rays and bounces with their parents (another
+  renderer's ray distribution; its children follow Embree's answers).
 
 A type's trace holds that type's rays only, each without its parent ray
 (`parent` -1; `parent_prim`, `parent_t`, `parent_uv`, `parent_ns` kept): a
@@ -28,13 +32,15 @@ import os
 
 from trace_writer import TraceWriter
 
-TYPES = ("primary", "shadow", "ao", "diffuse-1", "diffuse-2", "diffuse-3", "mirror", "glass")
+TYPES = ("primary", "shadow", "ao", "diffuse-1", "diffuse-2", "diffuse-3", "mirror", "glass", "pathtracer")
 SOURCE_OF = {"primary": "mirror", "shadow": "mirror", "mirror": "mirror", "ao": "path",
-             "diffuse-1": "path", "diffuse-2": "path", "diffuse-3": "path", "glass": "glass"}
+             "diffuse-1": "path", "diffuse-2": "path", "diffuse-3": "path", "glass": "glass",
+             "pathtracer": "pathtracer"}
 
 
-def source_commands(vbsim, scene_ply, light, opts, out_dir):
-    """The command that makes each source's trace, keyed by source name."""
+def source_commands(vbsim, scene_ply, light, opts, out_dir, camera):
+    """The command that makes each source's trace, keyed by source name; `camera` is
+    (eye, target, vertical fov in degrees) for Embree's path tracer."""
     size = f"{opts.width}x{opts.height}"
     light_arg = "point:" + ",".join(repr(float(x)) for x in light)
     render = [vbsim, "render", scene_ply, "-m", "none", "--children-from", "exact", "--size", size,
@@ -47,10 +53,24 @@ def source_commands(vbsim, scene_ply, light, opts, out_dir):
         "glass": [vbsim, "gen", "paths", "--rays", str(opts.glass_paths), "--seed", "1",
                   "--set", "scene=" + os.path.abspath(scene_ply), "--set", "depth=3", "-o",
                   os.path.join(out_dir, "glass"), "-q"],
+        "pathtracer": _pathtracer_capture(vbsim, scene_ply, light, opts, out_dir, camera),
     }
 
 
+def _pathtracer_capture(vbsim, scene_ply, light, opts, out_dir, camera):
+    eye, target, fov = camera
+    cap = os.path.join(out_dir, "pathtracer")
+    return [vbsim, "capture", "--strip-offsets", "--allow-partial", "-o", cap, "--", "pathtracer",
+            "-i", os.path.abspath(scene_ply), "--size", str(opts.width), str(opts.height), "--spp", str(opts.spp),
+            "--ambientlight", "0.3", "0.3", "0.3", "--pointlight", *(repr(float(x)) for x in light),
+            "300", "300", "300", "--threads", "1", "-o", os.path.join(cap, "image.ppm"),
+            "--vp", *(repr(float(x)) for x in eye), "--vi", *(repr(float(x)) for x in target),
+            "--vu", "0", "1", "0", "--fov", repr(float(fov))]
+
+
 def source_trace(source, out_dir):
+    if source == "pathtracer":
+        return os.path.join(out_dir, "pathtracer", "trace.jsonl")
     if source == "glass":
         d = os.path.join(out_dir, "glass")
         names = sorted(n for n in os.listdir(d) if n.endswith(".jsonl"))
@@ -72,6 +92,8 @@ def split(source, trace, wanted, out_dir, ao_length, limit):
     its rays without parents and without `expect` (primary rays keep theirs),
     at most `limit` of them taken evenly over the trace. Returns {type: (path,
     rays in the source)}."""
+    if source == "pathtracer":
+        return _whole(trace, out_dir, limit)
     with open(trace) as f:
         header = json.loads(f.readline())
         scene = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(trace)), header["scene"]))
@@ -114,6 +136,28 @@ def split(source, trace, wanted, out_dir, ao_length, limit):
                 w.ray(**fields)
         out[t] = (path, total)
     return out
+
+
+def _whole(trace, out_dir, limit):
+    """The `pathtracer` type: the captured trace's rays with their parents, the
+    first `limit` of them (parents precede children, so a cut keeps every kept
+    ray's parent). Embree's answers (`reference`) are left in the capture."""
+    with open(trace) as f:
+        header = json.loads(f.readline())
+        rays = [json.loads(line) for line in f if line.strip() and not line.startswith("#")]
+    total = len(rays)
+    if limit and total > limit:
+        rays = rays[:limit]
+    scene = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(trace)), header["scene"]))
+    path = os.path.join(out_dir, "pathtracer.raw.jsonl")
+    description = (f"suite ray type pathtracer: {len(rays)} of {total} rays Embree's pathtracer traced "
+                   "(vbsim capture --strip-offsets), with their parents")
+    with TraceWriter(path, scene=os.path.relpath(scene, out_dir), generator="scripts/suite.py",
+                     description=description) as w:
+        for r in rays:
+            fields = {k: v for k, v in r.items() if k not in ("reference",)}
+            w.ray(**fields)
+    return {"pathtracer": (path, total)}
 
 
 def _ao_ray(ray, length):

@@ -9,6 +9,7 @@ from the list's `triangles` or a `closed` scene has a boundary edge.
 """
 import hashlib
 import json
+import math
 import os
 import tarfile
 
@@ -142,6 +143,19 @@ def prepare(entry, by_name, cache, log=print):
         json.dump(meta, f, indent=1)
     os.replace(meta_path + ".partial", meta_path)
     return meta
+
+
+def pathtracer_camera(meta, fov=45.0):
+    """Eye, target and vertical field of view for Embree's path tracer, framed as
+    `vbsim render` frames a scene: the bounds' centre as the target, the eye along
+    (0.35, 0.6, 1) from it, far enough that the bounding sphere fills the view."""
+    lo, hi = meta["bounds"]
+    centre = [(l + h) / 2 for l, h in zip(lo, hi)]
+    radius = sum((h - l) ** 2 for l, h in zip(lo, hi)) ** 0.5 / 2
+    dist = radius / math.sin(math.radians(fov) / 2)
+    way = (0.35, 0.6, 1.0)
+    norm = sum(x * x for x in way) ** 0.5
+    return [c + dist * w / norm for c, w in zip(centre, way)], centre, fov
 
 
 def point_light(meta):

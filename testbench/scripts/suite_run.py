@@ -18,7 +18,7 @@ import unittest
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
 SCRIPT = os.path.join(ROOT, "scripts", "suite.py")
 LIST = os.path.join(ROOT, "traces", "suite", "scenes.json")
-TYPES = ("primary", "shadow", "ao", "diffuse-1", "diffuse-2", "diffuse-3", "mirror", "glass")
+TYPES = ("primary", "shadow", "ao", "diffuse-1", "diffuse-2", "diffuse-3", "mirror", "glass", "pathtracer")
 VBSIM = None
 
 
@@ -85,11 +85,29 @@ class SuiteSmallTest(unittest.TestCase):
             self.assertTrue({"none", "validity-bit", "offset-errbound"} <= names)
             for m in r["methods"]:
                 where = (r["scene"], r["type"], m["method"])
-                self.assertEqual(m["rays"], r["rays"], where)
+                if r["type"] == "pathtracer":  # its camera rays are in the trace, the secondary rows score the rest
+                    self.assertTrue(0 < m["rays"] < r["rays"], where)
+                else:
+                    self.assertEqual(m["rays"], r["rays"], where)
                 self.assertEqual(m["errors"], m["self_hit"] + m["false_hit"] + m["missed"], where)
                 self.assertAlmostEqual(m["rate"], m["errors"] / m["rays"], places=9, msg=where)
                 self.assertTrue(0.0 <= m["lower"] <= m["rate"] <= m["upper"] <= 1.0, where)
                 self.assertGreater(m["upper"], 0.0, where)  # a zero count keeps an upper bound
+
+    def test_pathtracer_type_is_a_capture_with_its_parents(self):
+        # Embree's own path tracer, captured: camera rays, and children linked to their parents.
+        runs = os.path.join(self.out, "runs")
+        for r in self.doc["results"]:
+            if r["type"] != "pathtracer":
+                continue
+            work = next(os.path.join(runs, d) for d in os.listdir(runs) if d.startswith(r["scene"] + "-"))
+            with open(os.path.join(work, "pathtracer.jsonl")) as f:
+                header = json.loads(f.readline())
+                rays = [json.loads(line) for line in f if line.strip()]
+            self.assertIn("pathtracer", header.get("description", ""), r["scene"])
+            self.assertTrue(any(x.get("parent", -1) >= 0 for x in rays), r["scene"])
+            self.assertTrue(any(x.get("kind") == "shadow" for x in rays), r["scene"])
+            self.assertTrue(all("expect" in x for x in rays), r["scene"])  # through the oracle
 
     def test_no_method_on_shadow_rays_shows_acne(self):
         # Unprotected shadow rays from the hit points re-hit their own surfaces somewhere.
@@ -129,7 +147,7 @@ class SuiteSmallTest(unittest.TestCase):
                 f.readline()
                 first = json.loads(f.readline())
             self.assertIn("expect", first)
-            if r["type"] != "primary":
+            if r["type"] not in ("primary", "pathtracer"):  # a capture keeps its trees, camera rays first
                 self.assertEqual(first.get("parent", -1), -1)
                 self.assertGreaterEqual(first["parent_prim"], 0)
             if r["type"] == "ao":  # an occlusion query a tenth of the bounding box's diagonal long
