@@ -102,17 +102,17 @@ std::string rejected_fields(const RawRay& r, bool self_excluded) {
 /// Embree's answer to ray `id` as one line of embree_hits.jsonl; an
 /// intersect query the trace kinds a shadow ray also says whether it was occluded.
 std::string hit_line(int64_t id, const RawRay& r, int64_t triangle, bool self_excluded, RayKind kind) {
-  std::string rejected = rejected_fields(r, self_excluded);
+  std::string extra = rejected_fields(r, self_excluded);  // the fields after Embree's answer
   if (kind == RayKind::Shadow && !occluded(r))
-    rejected = fmt::format(",\"occluded\":{}", r.geom != kInvalidId) + rejected;
+    extra = fmt::format(",\"occluded\":{}", r.geom != kInvalidId) + extra;
   if (occluded(r))
-    return fmt::format("{{\"id\":{},\"occluded\":{}{}}}\n", id, std::isinf(r.hit_t) && r.hit_t < 0, rejected);
-  if (r.geom == kInvalidId) return fmt::format("{{\"id\":{},\"prim\":-1{}}}\n", id, rejected);
+    return fmt::format("{{\"id\":{},\"occluded\":{}{}}}\n", id, std::isinf(r.hit_t) && r.hit_t < 0, extra);
+  if (r.geom == kInvalidId) return fmt::format("{{\"id\":{},\"prim\":-1{}}}\n", id, extra);
   std::string s = fmt::format("{{\"id\":{},\"prim\":{},\"t\":{},\"u\":{},\"v\":{},\"geom\":{},\"geom_prim\":{}", id,
                               triangle, r.hit_t, r.u, r.v, r.geom, r.prim);
   if (r.inst != kInvalidId) s += fmt::format(",\"inst\":{}", r.inst);
   if (triangle < 0) s += ",\"not_captured\":true";
-  return s + rejected + "}\n";
+  return s + extra + "}\n";
 }
 
 /// Embree's answer as the trace's `reference`: occluded or not, a miss, or a

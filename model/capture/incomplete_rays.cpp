@@ -62,8 +62,7 @@ IncompleteRayJudge::IncompleteRayJudge(const CapturedScene& scene, bool unwatche
 IncompleteRayJudge::~IncompleteRayJudge() = default;
 
 bool IncompleteRayJudge::self_excluded(const RawRay& r, const RawRay* parent) {
-  return parent && (r.flags & kRawFilterRejected) && parent->geom != kInvalidId && r.rejected_geom == parent->geom &&
-         r.rejected_prim == parent->prim && r.rejected_inst == parent->inst;
+  return parent && filters_rejected_hit(r, *parent);
 }
 
 uint32_t IncompleteRayJudge::reasons(const RawRay& r, const RawRay* parent) const {

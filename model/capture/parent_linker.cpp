@@ -88,9 +88,7 @@ bool ParentLinker::matches(const Candidate& c, const RawRay& child, RayLink& out
 }
 
 bool ParentLinker::matches_rejected(const Candidate& c, const RawRay& hit, const RawRay& child) const {
-  if (!(child.flags & kRawFilterRejected) || child.rejected_geom != hit.geom || child.rejected_prim != hit.prim ||
-      child.rejected_inst != hit.inst)
-    return false;
+  if (!filters_rejected_hit(child, hit)) return false;
   const double d = max_abs(sub(to_d(org_of(child)), to_d(c.point)));
   return d <= rules_.rejected_ulps * ulp_of(std::max(c.scale, max_abs(to_d(org_of(child)))));
 }
@@ -124,30 +122,33 @@ std::vector<RayLink> ParentLinker::link(const RawRay* rays, std::size_t n, const
     // The newest matching hit; among them, for a ray whose filters rejected one
     // primitive, the newest on that primitive (two coplanar surfaces give two
     // hits at one point: the renderer's exclusion names the one it left).
-    auto chosen = recent.rend();
+    // Failing all, a hit on that primitive within rejected_ulps.
+    auto adopt = [&](const Candidate& c, LinkTier tier, double offset) {
+      l.parent = static_cast<int64_t>(c.index);
+      l.tier = tier;
+      l.offset = offset;
+      l.kind = occluded ? RayKind::Shadow
+                        : infer_kind(rays[c.index], scene_.triangles()[static_cast<std::size_t>(c.triangle)], r);
+    };
+    const bool rejected = (r.flags & kRawFilterRejected) != 0;
+    const Candidate* chosen = nullptr;
+    RayLink how;
     for (auto it = recent.rbegin(); it != recent.rend(); ++it) {
       RayLink m;
       if (!matches(*it, r, m)) continue;
-      const RawRay& h = rays[it->index];
-      const bool named = (r.flags & kRawFilterRejected) && r.rejected_geom == h.geom && r.rejected_prim == h.prim &&
-                         r.rejected_inst == h.inst;
-      if (chosen == recent.rend() || named) chosen = it, l.tier = m.tier, l.offset = m.offset;
-      if (named || !(r.flags & kRawFilterRejected)) break;
+      const bool named = rejected && filters_rejected_hit(r, rays[it->index]);
+      if (!chosen || named) chosen = &*it, how = m;
+      if (named || !rejected) break;
     }
-    if (chosen != recent.rend()) {
-      const Triangle& tri = scene_.triangles()[static_cast<std::size_t>(chosen->triangle)];
-      l.parent = static_cast<int64_t>(chosen->index);
-      l.kind = occluded ? RayKind::Shadow : infer_kind(rays[chosen->index], tri, r);
+    if (chosen) {
+      adopt(*chosen, how.tier, how.offset);
+    } else if (rejected) {
+      for (auto it = recent.rbegin(); it != recent.rend(); ++it)
+        if (matches_rejected(*it, rays[it->index], r)) {
+          adopt(*it, LinkTier::RejectedPrimitive, 0.0);
+          break;
+        }
     }
-    if (l.parent < 0 && (r.flags & kRawFilterRejected))
-      for (auto it = recent.rbegin(); it != recent.rend(); ++it) {
-        if (!matches_rejected(*it, rays[it->index], r)) continue;
-        const Triangle& tri = scene_.triangles()[static_cast<std::size_t>(it->triangle)];
-        l.parent = static_cast<int64_t>(it->index);
-        l.tier = LinkTier::RejectedPrimitive;
-        l.kind = occluded ? RayKind::Shadow : infer_kind(rays[it->index], tri, r);
-        break;
-      }
     if (l.parent < 0) {
       l.tier = LinkTier::None;
       l.kind = occluded ? RayKind::Shadow : RayKind::Primary;

@@ -103,6 +103,13 @@ enum RawRayFlag : uint32_t {
 };
 static_assert(sizeof(RawRay) == 112, "RawRay is a 112-byte record");
 
+/// Whether the filter functions of `ray` rejected candidates on the primitive
+/// `hit` hit, and on no other (kRawFilterRejected naming hit's geom, prim, inst).
+inline bool filters_rejected_hit(const RawRay& ray, const RawRay& hit) {
+  return (ray.flags & kRawFilterRejected) && hit.geom != kInvalidId && ray.rejected_geom == hit.geom &&
+         ray.rejected_prim == hit.prim && ray.rejected_inst == hit.inst;
+}
+
 constexpr char kRawSceneMagic[8] = {'V', 'B', 'C', 'A', 'P', 'S', 'C', '1'};
 
 struct RawSceneHeader {

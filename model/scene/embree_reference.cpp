@@ -100,26 +100,11 @@ EmbreeReference::EmbreeReference(const Scene& scene, const std::string& tri_acce
 
 EmbreeReference::~EmbreeReference() { rtcReleaseScene(scene_); }
 
-bool EmbreeReference::intersect(Vec3f o, Vec3f d, float tnear, float tfar, int32_t& prim, float& t, float& u,
-                                float& v) const {
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
+bool EmbreeReference::intersect_in(RTCIntersectContext& context, Vec3f o, Vec3f d, float tnear, float tfar,
+                                   int32_t& prim, float& t, float& u, float& v) const {
   RTCRayHit query;
-  query.ray.org_x = o.x;
-  query.ray.org_y = o.y;
-  query.ray.org_z = o.z;
-  query.ray.tnear = tnear;
-  query.ray.dir_x = d.x;
-  query.ray.dir_y = d.y;
-  query.ray.dir_z = d.z;
-  query.ray.time = 0.0f;
-  query.ray.tfar = tfar;
-  query.ray.mask = 0xffffffffu;
-  query.ray.id = 0;
-  query.ray.flags = 0;
-  query.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  query.hit.primID = RTC_INVALID_GEOMETRY_ID;
-  query.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  query.ray = make_ray(o, d, tnear, tfar);
+  query.hit.geomID = query.hit.primID = query.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   rtcIntersect1(scene_, &context, &query);
   if (query.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
   prim = static_cast<int32_t>(query.hit.primID);
@@ -129,22 +114,17 @@ bool EmbreeReference::intersect(Vec3f o, Vec3f d, float tnear, float tfar, int32
   return true;
 }
 
+bool EmbreeReference::intersect(Vec3f o, Vec3f d, float tnear, float tfar, int32_t& prim, float& t, float& u,
+                                float& v) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  return intersect_in(context, o, d, tnear, tfar, prim, t, u, v);
+}
+
 bool EmbreeReference::occluded(Vec3f o, Vec3f d, float tnear, float tfar) const {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
-  RTCRay query;
-  query.org_x = o.x;
-  query.org_y = o.y;
-  query.org_z = o.z;
-  query.tnear = tnear;
-  query.dir_x = d.x;
-  query.dir_y = d.y;
-  query.dir_z = d.z;
-  query.time = 0.0f;
-  query.tfar = tfar;
-  query.mask = 0xffffffffu;
-  query.id = 0;
-  query.flags = 0;
+  RTCRay query = make_ray(o, d, tnear, tfar);
   rtcOccluded1(scene_, &context, &query);
   return query.tfar < 0.0f;  // Embree sets tfar to -inf on a hit
 }
@@ -156,27 +136,7 @@ bool EmbreeReference::intersect_excluding(Vec3f o, Vec3f d, float tnear, float t
   rtcInitIntersectContext(&ctx.context);
   ctx.context.filter = reject_excluded;
   ctx.exclude = static_cast<uint32_t>(exclude);  // -1: no triangle id
-  RTCRayHit query;
-  query.ray = make_ray(o, d, tnear, tfar);
-  query.hit.geomID = query.hit.primID = query.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-  rtcIntersect1(scene_, &ctx.context, &query);
-  if (query.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
-  prim = static_cast<int32_t>(query.hit.primID);
-  t = query.ray.tfar;
-  u = query.hit.u;
-  v = query.hit.v;
-  return true;
-}
-
-bool EmbreeReference::occluded_excluding(Vec3f o, Vec3f d, float tnear, float tfar, int32_t exclude) const {
-  if (!exclusion_) throw std::logic_error("EmbreeReference::occluded_excluding on a reference built without exclusion");
-  ExcludingContext ctx;
-  rtcInitIntersectContext(&ctx.context);
-  ctx.context.filter = reject_excluded;
-  ctx.exclude = static_cast<uint32_t>(exclude);
-  RTCRay query = make_ray(o, d, tnear, tfar);
-  rtcOccluded1(scene_, &ctx.context, &query);
-  return query.tfar < 0.0f;
+  return intersect_in(ctx.context, o, d, tnear, tfar, prim, t, u, v);
 }
 
 }  // namespace vbsim

@@ -29,7 +29,7 @@ class EmbreeReference {
   /// (its tri_accel setting, e.g. "bvh4.triangle4v" for a 4-wide tree); empty:
   /// Embree's choice. A name Embree does not know is a SceneError, as is one
   /// with characters other than letters, digits, '.' and '_'.
-  /// `exclusion`: also answer the *_excluding queries (the scene is built
+  /// `exclusion`: also answer intersect_excluding (the scene is built
   /// to call an intersect context's filter function, at a small cost to every query).
   explicit EmbreeReference(const Scene& scene, const std::string& tri_accel = "", bool exclusion = false);
   ~EmbreeReference();
@@ -46,15 +46,18 @@ class EmbreeReference {
   /// Embree stops at the first it finds). Thread-safe.
   bool occluded(Vec3f o, Vec3f d, float tnear, float tfar) const;
 
-  /// The same queries with triangle `exclude` never hit (a renderer's
-  /// primitive-ID exclusion, as a filter function that rejects it); -1
-  /// excludes nothing. Only on a reference built with `exclusion`
+  /// The same closest-hit query with triangle `exclude` never hit (a
+  /// renderer's primitive-ID exclusion, as a filter function that rejects it);
+  /// -1 excludes nothing. Only on a reference built with `exclusion`
   /// (std::logic_error otherwise).
   bool intersect_excluding(Vec3f o, Vec3f d, float tnear, float tfar, int32_t exclude, int32_t& prim, float& t,
                            float& u, float& v) const;
-  bool occluded_excluding(Vec3f o, Vec3f d, float tnear, float tfar, int32_t exclude) const;
 
  private:
+  /// rtcIntersect1 of o + t d, t in [tnear, tfar], in `context`: the closest-hit queries' one body.
+  bool intersect_in(RTCIntersectContext& context, Vec3f o, Vec3f d, float tnear, float tfar, int32_t& prim,
+                    float& t, float& u, float& v) const;
+
   std::unique_ptr<EmbreeDevice> device_;  // outlives scene_ (released after it)
   RTCScene scene_ = nullptr;
   bool exclusion_ = false;

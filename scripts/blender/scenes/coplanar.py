@@ -2,17 +2,13 @@
 tested hardest: a ground plane with a second plane exactly on it (z-fighting) and a decal
 1e-4 above it, two cubes sharing a face, a thin slab (2e-3 thick) standing on the ground, a
 glossy sphere and a point light (about 1,000 triangles). For scripts/blender_capture.py."""
+import os
+import sys
+
 import bpy
 
-
-def principled(name, **inputs):
-    m = bpy.data.materials.new(name)
-    m.use_nodes = True
-    bsdf = m.node_tree.nodes["Principled BSDF"]
-    for k, v in inputs.items():
-        bsdf.inputs[k].default_value = v
-    return m
-
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from blender_materials import principled  # noqa: E402
 
 bpy.ops.wm.read_factory_settings(use_empty=True)
 sc = bpy.context.scene

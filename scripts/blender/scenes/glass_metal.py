@@ -1,16 +1,12 @@
 """A small Cycles scene: a glass UV sphere, a metallic Suzanne subdivided once, a ground plane
 and a point light (4,898 triangles). For scripts/blender_capture.py."""
+import os
+import sys
+
 import bpy
 
-
-def principled(name, **inputs):
-    m = bpy.data.materials.new(name)
-    m.use_nodes = True
-    bsdf = m.node_tree.nodes["Principled BSDF"]
-    for k, v in inputs.items():
-        bsdf.inputs[k].default_value = v
-    return m
-
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from blender_materials import principled  # noqa: E402
 
 bpy.ops.wm.read_factory_settings(use_empty=True)
 sc = bpy.context.scene
