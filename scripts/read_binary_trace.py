@@ -22,7 +22,7 @@ import numpy as np
 from trace_writer import (HAS_EXPECT, HAS_EXPECT_T, HAS_PARENT_NS, HAS_PARENT_T, HAS_PARENT_UV,  # noqa: F401
                           HAS_REFERENCE, HAS_REFERENCE_T, HAS_SIGN, INCOMPLETE_REASONS, KIND_NAMES,
                           LAYOUT_VERSION, MAGIC, PREAMBLE_BYTES, RECORD_DTYPE, REFERENCE_LAYOUT_VERSION,
-                          REFERENCE_RECORD_DTYPE)
+                          REFERENCE_RECORD_DTYPE, MASK_LAYOUT_VERSION, MASK_RECORD_DTYPE)
 
 
 class BinaryTraceError(ValueError):
@@ -30,11 +30,12 @@ class BinaryTraceError(ValueError):
 
 
 def record_dtype(path):
-    """The records' dtype: RECORD_DTYPE, or REFERENCE_RECORD_DTYPE for layout 2."""
+    """The records' dtype: RECORD_DTYPE, REFERENCE_RECORD_DTYPE for layout 2, MASK_RECORD_DTYPE for 3."""
     with open(path, "rb") as f:
         preamble = f.read(PREAMBLE_BYTES)
     version = int(np.frombuffer(preamble, dtype="<u4", count=1, offset=8)[0]) if len(preamble) == PREAMBLE_BYTES else 0
-    return REFERENCE_RECORD_DTYPE if version == REFERENCE_LAYOUT_VERSION else RECORD_DTYPE
+    return {REFERENCE_LAYOUT_VERSION: REFERENCE_RECORD_DTYPE, MASK_LAYOUT_VERSION: MASK_RECORD_DTYPE}.get(
+        version, RECORD_DTYPE)
 
 
 def read_header(path):
@@ -46,7 +47,7 @@ def read_header(path):
         if len(preamble) < PREAMBLE_BYTES:
             raise BinaryTraceError(f"{path}: truncated: the file ends inside its preamble")
         version, n = np.frombuffer(preamble, dtype="<u4", count=2, offset=8)
-        if version not in (LAYOUT_VERSION, REFERENCE_LAYOUT_VERSION):
+        if version not in (LAYOUT_VERSION, REFERENCE_LAYOUT_VERSION, MASK_LAYOUT_VERSION):
             raise BinaryTraceError(f"{path}: unsupported binary layout version {version}")
         padded = (int(n) + 7) // 8 * 8
         text = f.read(padded)
@@ -72,7 +73,7 @@ def record_count(path, offset):
 
 
 def read_binary_trace(path):
-    """Returns (header dict, structured array of all records; REFERENCE_RECORD_DTYPE for layout 2)."""
+    """Returns (header dict, structured array of all records, in record_dtype(path))."""
     header, offset = read_header(path)
     count = record_count(path, offset)
     return header, np.fromfile(path, dtype=record_dtype(path), count=count, offset=offset)
@@ -111,6 +112,8 @@ def describe(record):
         ray["reference"] = {"occluded": True} if prim == -2 else {"prim": prim}
         if flags & HAS_REFERENCE_T:
             ray["reference"]["t"] = float(record["reference_t"])
+    if "mask" in record.dtype.names and int(record["mask"]) != 0xFFFFFFFF:
+        ray["mask"] = int(record["mask"])
     if int(record["incomplete"]):
         ray["incomplete"] = [n for k, n in enumerate(INCOMPLETE_REASONS) if int(record["incomplete"]) >> k & 1]
     if flags & HAS_EXPECT:

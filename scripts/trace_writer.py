@@ -61,6 +61,13 @@ REFERENCE_RECORD_DTYPE = np.dtype(RECORD_DTYPE.descr + [
     ("reference_t", "<f4"),      # valid when flags & HAS_REFERENCE_T
 ])
 assert REFERENCE_RECORD_DTYPE.itemsize == 104
+# Layout 3 (a header with "triangle_masks"): layout 2's record, then the ray's mask.
+MASK_LAYOUT_VERSION = 3
+MASK_RECORD_DTYPE = np.dtype(REFERENCE_RECORD_DTYPE.descr + [
+    ("mask", "<u4"),             # the ray's mask; 0xffffffff (all bits) when the text form has none
+    ("reserved", "<u4"),         # 0
+])
+assert MASK_RECORD_DTYPE.itemsize == 112
 HAS_REFERENCE = 1 << 6
 HAS_REFERENCE_T = 1 << 7
 

@@ -14,6 +14,7 @@
 #include "datapath/hit_point.h"
 #include "io/atomic_output_file.h"
 #include "scene/ply_scene_writer.h"
+#include "scene/triangle_masks.h"
 #include "trace/incomplete_reasons.h"
 #include "trace/trace_file.h"
 #include "trace/trace_validation.h"
@@ -179,7 +180,7 @@ MergeResult merge_capture(const std::string& raw_dir, const std::string& out_dir
   std::vector<TreeRef> trees;
   const ParentLinker linker(scene, opt.rules);
   LinkCounts links;
-  int64_t other_scene = 0, invalid = 0, outside_hits = 0;
+  int64_t other_scene = 0, invalid = 0, outside_hits = 0, rays_with_masks = 0;
   std::map<std::string, int64_t> invalid_by_field;
   std::string first_invalid;
   for (const auto& [index, path] : files.ray_files) {
@@ -199,6 +200,7 @@ MergeResult merge_capture(const std::string& raw_dir, const std::string& out_dir
         continue;
       }
       t.eligible[i] = true;
+      rays_with_masks += judge.ray_mask(r) != kAllMaskBits;
       outside_hits += !occluded(r) && r.geom != kInvalidId && scene.triangle_hit(r).triangle < 0;
     }
     LinkCounts c;
@@ -242,6 +244,10 @@ MergeResult merge_capture(const std::string& raw_dir, const std::string& out_dir
       threads.size(), threads.size() == 1 ? "" : "s",
       opt.strip_offsets ? "children start at their parent's hit point with tmin 0, the application's offsets removed"
                         : "origins, tmin and tmax as the application passed them");
+  // Ray masks, where Embree honours them and the application used them: the
+  // trace declares the triangles' masks and every ray carries its own.
+  if (rays_with_masks > 0 || !judge.triangle_masks().empty())
+    header.triangle_masks = triangle_mask_ranges(judge.triangle_masks());
   std::unique_ptr<TraceSink> sink = create_trace_writer(trace_path.string(), header);
   AtomicOutputFile hits_file(hits_path.string(), true);
   std::ostream& hits = hits_file.stream();
@@ -258,6 +264,7 @@ MergeResult merge_capture(const std::string& raw_dir, const std::string& out_dir
       const RawRay* parent = l.parent >= 0 ? &t.rays[static_cast<std::size_t>(l.parent)] : nullptr;
       TraceRay tr = base_ray(r);
       tr.id = ids[tree.thread][i] = next_id++;
+      tr.mask = judge.ray_mask(r);
       tr.kind = l.kind;
       if (l.parent >= 0) {
         const RawRay& p = t.rays[static_cast<std::size_t>(l.parent)];
@@ -300,7 +307,7 @@ MergeResult merge_capture(const std::string& raw_dir, const std::string& out_dir
       e.update({{"first_triangle", g.first_triangle}, {"triangles", g.triangles}, {"vertices", g.vertices}});
     if (g.filters & kRawIntersectFilter) e["intersect_filter"] = true;
     if (g.filters & kRawOccludedFilter) e["occluded_filter"] = true;
-    if (g.mask != 0xffffffffu) e["mask"] = g.mask;  // rtcSetGeometryMask: rays sharing no bit with it are marked
+    if (g.mask != kAllMaskBits) e["mask"] = g.mask;  // rtcSetGeometryMask: the trace's triangle_masks hold it
     geometries.push_back(e);
   }
   json other_processes = json::array();
@@ -339,6 +346,9 @@ MergeResult merge_capture(const std::string& raw_dir, const std::string& out_dir
       {"hits_outside_captured_triangles", outside_hits},
       {"incomplete", {{"rays", incomplete}, {"by_reason", by_reason},
                       {"unwatched_filter_functions", unwatched_filters}, {"embree_ray_masks", ray_masks}}},
+      {"masks", {{"declared", header.triangle_masks.has_value()},
+                 {"triangle_ranges", header.triangle_masks ? header.triangle_masks->size() : 0},
+                 {"rays_with_masks", rays_with_masks}}},
       {"self_excluded", judge.self_excluded_rays()},
       {"renderer_excludes_parents", excludes_parents},
       {"instances", {{"flattened", scene.has_instances()}, {"rays_checked", judge.flattened_checked()},
@@ -373,6 +383,11 @@ MergeResult merge_capture(const std::string& raw_dir, const std::string& out_dir
       scene.triangles().size(), scene_path.string(), links.at_hit_point, links.normal_offset, links.max_offset,
       links.rejected_primitive, links.unlinked_intersect, links.unlinked_occluded, other_process_rays, other_scene, invalid, outside_hits,
       describe_geometries(scene.geometries(), false), judge.self_excluded_rays());
+  if (header.triangle_masks)
+    out.summary += fmt::format(
+        "  ray masks: carried into the trace ({} triangle range{} with a mask other than all bits, {} rays with "
+        "one); replays and the oracle honour them\n",
+        header.triangle_masks->size(), header.triangle_masks->size() == 1 ? "" : "s", rays_with_masks);
   if (scene.has_instances())
     out.summary += fmt::format(
         "  instances: flattened into world-space triangles; {} of {} rays answered otherwise on them than by Embree's "

@@ -1,5 +1,6 @@
 #include "capture/captured_scene.h"
 
+#include <algorithm>
 #include <array>
 #include <cstring>
 #include <fstream>
@@ -39,6 +40,17 @@ Vec3f transformed(const float m[12], Vec3f p) {
           static_cast<float>(double(m[8]) * x + double(m[9]) * y + double(m[10]) * z + double(m[11]))};
 }
 
+/// The one mask of an instanced triangle whose instance has mask `instance`
+/// and whose geometry has `geometry` (Embree tests both against the ray);
+/// records the pair in `unheld` when one mask cannot stand for both.
+uint32_t instanced_mask(uint32_t instance, uint32_t geometry, std::vector<std::pair<uint32_t, uint32_t>>& unheld) {
+  if (instance == 0xffffffffu || instance == geometry) return geometry;
+  if (geometry == 0xffffffffu) return instance;
+  const std::pair<uint32_t, uint32_t> pair{instance, geometry};
+  if (std::find(unheld.begin(), unheld.end(), pair) == unheld.end()) unheld.push_back(pair);
+  return geometry;
+}
+
 }  // namespace
 
 CapturedScene CapturedScene::read(const std::string& path, const SnapshotFinder& find) {
@@ -75,8 +87,11 @@ CapturedScene CapturedScene::read(const std::string& path, const SnapshotFinder&
         } else {
           cg.first_triangle = static_cast<int64_t>(s.triangles_.size());
           cg.triangles = static_cast<uint32_t>(child->triangles_.size());
-          for (const Triangle& t : child->triangles_)
+          for (std::size_t k = 0; k < child->triangles_.size(); ++k) {
+            const Triangle& t = child->triangles_[k];
             s.triangles_.push_back({transformed(ri.xfm, t.v0), transformed(ri.xfm, t.v1), transformed(ri.xfm, t.v2)});
+            s.triangle_masks_.push_back(instanced_mask(cg.mask, child->triangle_masks_[k], s.unheld_masks_));
+          }
           if (s.first_by_geom_.size() <= cg.geom_id) {
             s.first_by_geom_.resize(cg.geom_id + 1, -1);
             s.count_by_geom_.resize(cg.geom_id + 1, 0);
@@ -107,12 +122,14 @@ CapturedScene CapturedScene::read(const std::string& path, const SnapshotFinder&
         const Vec3f v0 = vertices[idx[0]], v1 = vertices[idx[1]], v2 = vertices[idx[2]];
         if (!quads) {
           s.triangles_.push_back({v0, v1, v2});
+          s.triangle_masks_.push_back(cg.mask);
           continue;
         }
         // Embree's split of quad (v0, v1, v2, v3): triangles (v0, v1, v3) and (v2, v3, v1).
         const Vec3f v3 = vertices[idx[3]];
         s.triangles_.push_back({v0, v1, v3});
         s.triangles_.push_back({v2, v3, v1});
+        s.triangle_masks_.insert(s.triangle_masks_.end(), 2, cg.mask);
       }
       if (s.first_by_geom_.size() <= cg.geom_id) {
         s.first_by_geom_.resize(cg.geom_id + 1, -1);

@@ -9,6 +9,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "capture/raw_capture_format.h"
@@ -62,6 +63,14 @@ class CapturedScene {
   bool has_instances() const { return has_instances_; }
 
   const std::vector<Triangle>& triangles() const { return triangles_; }
+  /// Triangle k's ray-mask bits at [k]: its geometry's mask (rtcSetGeometryMask,
+  /// all bits by default); inside an instance, the instance's mask where the
+  /// instanced geometry keeps all bits, else the geometry's.
+  const std::vector<uint32_t>& triangle_masks() const { return triangle_masks_; }
+  /// (instance mask, geometry mask) pairs, both other than all bits and
+  /// different, that one mask per triangle cannot hold: Embree needs a ray to
+  /// share a bit with both, triangle_masks() holds the geometry's.
+  const std::vector<std::pair<uint32_t, uint32_t>>& unheld_masks() const { return unheld_masks_; }
   const std::vector<CapturedGeometry>& geometries() const { return geometries_; }
   uint32_t scene() const { return scene_; }
   uint32_t commit() const { return commit_; }
@@ -75,6 +84,8 @@ class CapturedScene {
   std::vector<std::shared_ptr<const CapturedScene>> instanced_by_geom_;  ///< geomID -> the scene an instance flattens
   bool has_instances_ = false;
   std::vector<Triangle> triangles_;
+  std::vector<uint32_t> triangle_masks_;  ///< one per triangle
+  std::vector<std::pair<uint32_t, uint32_t>> unheld_masks_;
 };
 
 /// Name of an RTCGeometryType value ("triangle", "quad", "instance", ...).

@@ -38,7 +38,7 @@ uint32_t incomplete_reason_of(const CapturedGeometry& g) {
 
 IncompleteRayJudge::IncompleteRayJudge(const CapturedScene& scene, bool unwatched_filters, int on_surface_ulps,
                                        bool ray_masks)
-    : scene_(scene), unwatched_filters_(unwatched_filters) {
+    : scene_(scene), unwatched_filters_(unwatched_filters), ray_masks_(ray_masks) {
   float extent = 0.0f;
   for (const Triangle& t : scene.triangles())
     for (const Vec3f& v : {t.v0, t.v1, t.v2})
@@ -47,16 +47,22 @@ IncompleteRayJudge::IncompleteRayJudge(const CapturedScene& scene, bool unwatche
   on_surface_radius_ = on_surface_ulps * (std::nextafter(extent, INFINITY) - extent);
   if (!scene.triangles().empty()) surfaces_ = std::make_unique<SurfaceProximity>(scene.triangles());
   for (const CapturedGeometry& g : scene.geometries()) {
-    if (ray_masks && g.status == RawGeometryStatus::Captured &&
-        std::find(masks_.begin(), masks_.end(), g.mask) == masks_.end())
-      masks_.push_back(g.mask);
     const uint32_t r = incomplete_reason_of(g);
     uncaptured_kinds_ |= r;
     if (reason_by_geom_.size() <= g.geom_id) reason_by_geom_.resize(g.geom_id + 1, 0);
     reason_by_geom_[g.geom_id] = r;
   }
-  if ((uncaptured_kinds_ != 0 || scene.has_instances()) && !scene.triangles().empty())
-    captured_only_ = std::make_unique<EmbreeReference>(make_scene(scene.triangles()), "", true);
+  if (ray_masks) {
+    unheld_masks_ = scene.unheld_masks();
+    if (std::any_of(scene.triangle_masks().begin(), scene.triangle_masks().end(),
+                    [](uint32_t m) { return m != kAllMaskBits; }))
+      triangle_masks_ = scene.triangle_masks();
+  }
+  if ((uncaptured_kinds_ != 0 || scene.has_instances()) && !scene.triangles().empty()) {
+    Scene flattened = make_scene(scene.triangles());
+    flattened.triangle_masks = triangle_masks_;
+    captured_only_ = std::make_unique<EmbreeReference>(flattened, "", true);
+  }
 }
 
 IncompleteRayJudge::~IncompleteRayJudge() = default;
@@ -79,16 +85,18 @@ uint32_t IncompleteRayJudge::reasons(const RawRay& r, const RawRay* parent) cons
                               : -1;
   if (!parent && surfaces_ && surfaces_->within({r.org[0], r.org[1], r.org[2]}, on_surface_radius_))
     bits |= kIncompleteUnlinked;
-  // A captured geometry whose mask shares no bit with the ray's: Embree did not
-  // test it for this ray, a replay of the trace would.
-  for (const uint32_t m : masks_)
-    if ((r.mask & m) == 0) bits |= kIncompleteMask;
+  // An instanced geometry whose instance and geometry masks the trace cannot
+  // both hold (it holds the geometry's): a ray that shares a bit with the
+  // geometry's but none with the instance's would see in a replay what Embree
+  // did not test.
+  for (const auto& [instance, geometry] : unheld_masks_)
+    if ((r.mask & geometry) != 0 && (r.mask & instance) == 0) bits |= kIncompleteMask;
   int32_t prim = -1;
   float t = 0.0f, u, v;
   auto captured_answer = [&] {  // Embree's closest hit on the trace's triangles
     return captured_only_ && captured_only_->intersect_excluding({r.org[0], r.org[1], r.org[2]},
                                                                  {r.dir[0], r.dir[1], r.dir[2]}, r.tnear, r.tfar,
-                                                                 exclude, prim, t, u, v);
+                                                                 exclude, prim, t, u, v, ray_mask(r));
   };
   if (r.op == static_cast<uint16_t>(RawOp::Intersect)) {
     const TriangleHit h = scene_.triangle_hit(r);
@@ -98,6 +106,9 @@ uint32_t IncompleteRayJudge::reasons(const RawRay& r, const RawRay* parent) cons
       return bits | (g != 0 ? g : kIncompleteOtherGeometry);
     }
     if (!scene_.has_instances()) return bits;  // a miss, or the closest hit on a triangle the trace holds
+    // Marked for masks the trace cannot hold: the flattened answer, with the
+    // geometry's mask alone, differs for that reason, not for the instance.
+    if (bits & kIncompleteMask) return bits;
     // With flattened instances the trace's triangles are not the ones Embree
     // tested (it transformed the ray instead): the flattened answer must agree.
     ++flattened_checked_;
@@ -109,6 +120,7 @@ uint32_t IncompleteRayJudge::reasons(const RawRay& r, const RawRay* parent) cons
   }
   const bool occluded = std::isinf(r.hit_t) && r.hit_t < 0;
   if (!scene_.has_instances() && (!occluded || uncaptured_kinds_ == 0)) return bits;
+  if (bits & kIncompleteMask) return bits;  // as above
   if (scene_.has_instances()) ++flattened_checked_;
   const bool by_captured = captured_answer();
   if (by_captured == occluded) return bits;

@@ -30,6 +30,7 @@
 #include <vector>
 
 #include "capture/captured_scene.h"
+#include "trace/trace_record.h"
 #include "capture/raw_capture_format.h"
 #include "scene/embree_reference.h"
 #include "scene/surface_proximity.h"
@@ -46,8 +47,10 @@ class IncompleteRayJudge {
   /// `on_surface_ulps`: a parentless ray within this many ulps of the scene's
   /// largest coordinate from a triangle starts on a surface (marked `unlinked`).
   /// `ray_masks`: the application's Embree honours ray masks (a build option,
-  /// RTC_DEVICE_PROPERTY_RAY_MASK_SUPPORTED); without them it tests every
-  /// geometry whatever the masks, so no ray is marked `mask`.
+  /// RTC_DEVICE_PROPERTY_RAY_MASK_SUPPORTED): the trace then carries the
+  /// triangles' and rays' masks (ray_mask(), triangle_masks()), and only a ray
+  /// whose instance's mask the trace cannot hold is marked `mask`; without
+  /// them Embree tests every geometry whatever the masks, and so does the trace.
   IncompleteRayJudge(const CapturedScene& scene, bool unwatched_filters, int on_surface_ulps, bool ray_masks = true);
   ~IncompleteRayJudge();
 
@@ -67,6 +70,11 @@ class IncompleteRayJudge {
   /// Rays judged so far whose filters rejected their parent's primitive only.
   int64_t self_excluded_rays() const { return self_excluded_rays_; }
 
+  /// The mask `r` carries in the trace: its own when Embree honours masks, else all bits.
+  uint32_t ray_mask(const RawRay& r) const { return ray_masks_ ? r.mask : kAllMaskBits; }
+  /// The triangles' masks the trace declares (empty: all bits, or masks not honoured).
+  const std::vector<uint32_t>& triangle_masks() const { return triangle_masks_; }
+
   /// Reasons of every geometry of the scene outside the trace.
   uint32_t uncaptured_kinds() const { return uncaptured_kinds_; }
   /// In a scene with flattened instances: the rays checked against Embree's
@@ -80,7 +88,9 @@ class IncompleteRayJudge {
   bool unwatched_filters_;
   uint32_t uncaptured_kinds_ = 0;
   std::vector<uint32_t> reason_by_geom_;           ///< geomID -> reason bit
-  std::vector<uint32_t> masks_;                    ///< the distinct masks of the captured geometries
+  bool ray_masks_;                                  ///< Embree honours ray masks
+  std::vector<uint32_t> triangle_masks_;            ///< per triangle, when any is not all bits
+  std::vector<std::pair<uint32_t, uint32_t>> unheld_masks_;  ///< CapturedScene::unheld_masks()
   std::unique_ptr<EmbreeReference> captured_only_;  ///< the captured triangles, when anything is outside
   std::unique_ptr<SurfaceProximity> surfaces_;      ///< the captured triangles, for parentless origins
   float on_surface_radius_ = 0.0f;

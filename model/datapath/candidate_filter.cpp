@@ -6,6 +6,7 @@ void CandidateCounters::add(const CandidateCounters& o) {
   candidates += o.candidates;
   suspects += o.suspects;
   rejected += o.rejected;
+  rejected_mask += o.rejected_mask;
   rejected_primid += o.rejected_primid;
   rejected_sign_only += o.rejected_sign_only;
   invalid_normal += o.invalid_normal;

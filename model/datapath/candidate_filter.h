@@ -1,7 +1,9 @@
 // CandidateFilter: the per-candidate part of a self-intersection method, applied
 // inside the closest-hit search the way an Embree filter function is: a rejected
 // candidate does not shorten the ray interval, so the search goes on.
-// Order: primid exclusion first (it needs no arithmetic), then the avoidance unit.
+// Order: the ray mask first (Embree's ray masks: a triangle whose mask shares
+// no bit with the ray's is no candidate), then primid exclusion (neither needs
+// arithmetic), then the avoidance unit.
 #pragma once
 #include <cstdint>
 
@@ -18,6 +20,7 @@ struct CandidateCounters {
   uint64_t candidates = 0;         ///< hits the tester reported inside the interval
   uint64_t suspects = 0;           ///< avoidance unit: sign bit equal to front/back bit
   uint64_t rejected = 0;           ///< candidates dropped by any filter
+  uint64_t rejected_mask = 0;      ///< dropped because the triangle's mask shares no bit with the ray's
   uint64_t rejected_primid = 0;    ///< dropped because prim == parent_prim
   uint64_t rejected_sign_only = 0; ///< dropped by the bit alone (policy sign-only)
   uint64_t invalid_normal = 0;     ///< rejected suspects whose normal test said invalid
@@ -29,8 +32,11 @@ struct CandidateCounters {
 
 class CandidateFilter {
  public:
-  explicit CandidateFilter(const SelfIntersectionMethod& method)
-      : primid_(method.primid), avoid_(method.validity_bit), cfg_(method.avoidance) {}
+  /// `triangle_masks`: triangle k's mask at [k] (Scene::mask_table()), or
+  /// null when every triangle has all bits (a ray of mask 0 still sees none);
+  /// it must outlive the filter.
+  explicit CandidateFilter(const SelfIntersectionMethod& method, const uint32_t* triangle_masks = nullptr)
+      : primid_(method.primid), avoid_(method.validity_bit), cfg_(method.avoidance), masks_(triangle_masks) {}
 
   /// True when the candidate `hit` on triangle `prim` may become the closest hit.
   bool accept(const Ray& ray, const Triangle& tri, int32_t prim, const Hit& hit,
@@ -46,6 +52,11 @@ class CandidateFilter {
   bool accept(const Ray& ray, const Triangle& /*tri*/, int32_t prim, const Hit& /*hit*/, CandidateCounters& c,
               Decide&& decide) const {
     ++c.candidates;
+    if (((masks_ != nullptr ? masks_[prim] : 0xffffffffu) & ray.mask) == 0) {
+      ++c.rejected;
+      ++c.rejected_mask;
+      return false;
+    }
     if (primid_ && prim == ray.parent_prim) {
       ++c.rejected;
       ++c.rejected_primid;
@@ -72,6 +83,7 @@ class CandidateFilter {
   bool primid_;
   bool avoid_;
   AvoidanceConfig cfg_;
+  const uint32_t* masks_;
 };
 
 }  // namespace vbsim

@@ -5,6 +5,7 @@
 //   validity-bit / sign-only: + 1 bit (the parent sign bit)
 //   primid:                   + 32 bits (the parent triangle id)
 //   offsets, tmin, shading-position, reverse-shadow: + 0 (work at emission)
+//   traces with ray masks: + 32 bits (the mask), every method; not priced
 // method_bits_per_ray() in self_intersection_method.h computes this per method.
 #pragma once
 #include <cstdint>
@@ -32,6 +33,9 @@ struct Ray {
   RayKind kind = RayKind::Primary;
   uint8_t sign = 0;        ///< parent sign bit: 1 when dot(d, Ng(parent_prim)) < 0
   int32_t parent_prim = -1;  ///< parent triangle, held only for the primid method
+  /// Ray mask (Embree's): the ray sees a triangle whose mask shares a bit with
+  /// it. All bits unless the trace declares masks; held only for such traces.
+  uint32_t mask = 0xffffffffu;
 };
 
 }  // namespace vbsim

@@ -24,6 +24,9 @@ struct ExactRay {
   ExactVec3 d;
   bool has_tmax = false;
   mpq_class tmax;
+  /// The ray's mask: triangles whose mask (Scene::triangle_masks) shares no
+  /// bit with it are not there for this ray (the trace's ray masks).
+  uint32_t mask = 0xffffffffu;
 };
 
 /// Exact hit of the intended ray on one triangle: hit when the line meets the

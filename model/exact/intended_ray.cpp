@@ -11,6 +11,7 @@ namespace vbsim {
 ExactRay intended_ray(const TraceRay& ray, const Scene& scene, const ParentRay* parent) {
   ExactRay out;
   out.d = to_exact(ray.d);
+  out.mask = ray.mask;
   if (std::isnan(ray.tmax))
     throw std::invalid_argument("intended_ray: ray " + std::to_string(ray.id) + ": tmax is NaN");
   if (std::isinf(ray.tmax)) {

@@ -145,6 +145,12 @@ void test_triangle(const ExactRay& ray, const FilterRay& fr, const Triangle& tri
   }
 }
 
+/// Whether the ray's mask lets it see triangle `prim` (the trace's ray masks).
+bool sees(const Scene& scene, const ExactRay& ray, int32_t prim) {
+  const uint32_t tri = scene.triangle_masks.empty() ? 0xffffffffu : scene.triangle_masks[static_cast<size_t>(prim)];
+  return (tri & ray.mask) != 0;
+}
+
 void traverse(const ExactRay& ray, const FilterRay& fr, const Scene& scene, const Bvh& bvh,
               Workspace& ws, double& best_hi) {
   double tn = 0;
@@ -158,6 +164,7 @@ void traverse(const ExactRay& ray, const FilterRay& fr, const Scene& scene, cons
     if (ref.is_leaf()) {
       for (uint32_t j = ref.index; j < ref.index + ref.count; ++j) {
         const int32_t prim = static_cast<int32_t>(bvh.tris[j].prim);
+        if (!sees(scene, ray, prim)) continue;
         test_triangle(ray, fr, scene.triangles[static_cast<size_t>(prim)], prim, ws, best_hi);
       }
       continue;
@@ -187,6 +194,7 @@ bool find_closest(const Scene& scene, const Bvh& bvh, const ExactRay& ray,
     traverse(ray, fr, scene, bvh, ws, best_hi);
   } else {  // the filter has no proven bound for this ray: every triangle in rationals
     for (int32_t p = 0; p < scene.size(); ++p) {
+      if (!sees(scene, ray, p)) continue;
       ExactHit h = exact_intersect(ray, scene.triangles[static_cast<size_t>(p)]);
       if (!h.hit) continue;
       ws.next_exact().swap(h.t);

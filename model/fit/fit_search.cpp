@@ -19,7 +19,7 @@ struct RayJudge {
   size_t ray;
   Verdict at(int i) const {
     const ReplayOptions opt = param.options_at(i);
-    const CandidateFilter filter(opt.method);
+    const CandidateFilter filter(opt.method, trace.scene.scene.mask_table());
     KindStats scratch;
     return replay_one_ray(trace.rays()[ray], trace.scene.scene, trace.scene.bvh, opt, filter,
                           trace.blocks->parents_for(ray), scratch)

@@ -15,7 +15,11 @@ constexpr std::size_t kChunkRays = 128;
 }  // namespace
 
 BlockReplay::BlockReplay(const Scene& scene, const Bvh& bvh, const ReplayOptions& options, int threads)
-    : scene_(scene), bvh_(bvh), opt_(options), filter_(options.method), threads_(std::max(threads, 1)) {
+    : scene_(scene),
+      bvh_(bvh),
+      opt_(options),
+      filter_(options.method, scene.mask_table()),
+      threads_(std::max(threads, 1)) {
   check_traversal_depth(bvh);
 }
 

@@ -92,7 +92,11 @@ RayOutcome replay_one_ray(const TraceRay& tr, const Scene& scene, const Bvh& bvh
 }
 
 FunctionalReplayer::FunctionalReplayer(const Scene& scene, const Bvh& bvh, const ReplayOptions& options)
-    : scene_(scene), bvh_(bvh), opt_(options), filter_(options.method), parents_(options.parent_window) {
+    : scene_(scene),
+      bvh_(bvh),
+      opt_(options),
+      filter_(options.method, scene.mask_table()),
+      parents_(options.parent_window) {
   check_traversal_depth(bvh);
 }
 

@@ -104,6 +104,7 @@ EmittedRay emit_ray(const TraceRay& tr, const Scene& scene, const ReplayOptions&
   r.tmax = tr.tmax;
   r.kind = tr.kind;
   r.parent_prim = tr.parent_prim;
+  r.mask = tr.mask;
   r.sign = parent_sign_bit(tr, scene);
   if (parent) out.parent = *parent;
   Vec3f p = base_origin(tr, scene, opt.hit_point, parent, out.emission_fallback);

@@ -11,6 +11,7 @@
 #include "io/atomic_output_file.h"
 #include "replay/block_replay.h"
 #include "replay/ray_conservation.h"
+#include "scene/triangle_masks.h"
 #include "trace/trace_blocks.h"
 #include "trace/trace_source.h"
 
@@ -18,7 +19,7 @@ namespace vbsim {
 
 SceneAndBvh load_trace_scene(const TraceHeader& header, const BvhBuildOptions& bvh, WorkProgress* progress) {
   SceneAndBvh sb;
-  sb.scene = load_scene(header.scene_path, header.transform, progress);
+  sb.scene = load_header_scene(header, progress);
   sb.bvh = build_bvh(sb.scene, bvh, progress);
   return sb;
 }

@@ -17,17 +17,20 @@ nlohmann::json verdicts_json(const KindStats& k) {
 double ratio(uint64_t num, uint64_t den) { return den ? static_cast<double>(num) / den : 0.0; }
 
 nlohmann::json avoidance_json(const CandidateCounters& c) {
-  return {{"candidates", c.candidates},
-          {"suspects", c.suspects},
-          {"rejected", c.rejected},
-          {"suspect_rate", ratio(c.suspects, c.candidates)},
-          {"rejection_rate", ratio(c.rejected, c.candidates)},
-          {"rejected_by",
-           {{"primid", c.rejected_primid},
-            {"sign_only", c.rejected_sign_only},
-            {"normal", c.invalid_normal},
-            {"ray", c.invalid_ray},
-            {"component", c.invalid_component}}}};
+  nlohmann::json j = {{"candidates", c.candidates},
+                      {"suspects", c.suspects},
+                      {"rejected", c.rejected},
+                      {"suspect_rate", ratio(c.suspects, c.candidates)},
+                      {"rejection_rate", ratio(c.rejected, c.candidates)},
+                      {"rejected_by",
+                       {{"primid", c.rejected_primid},
+                        {"sign_only", c.rejected_sign_only},
+                        {"normal", c.invalid_normal},
+                        {"ray", c.invalid_ray},
+                        {"component", c.invalid_component}}}};
+  // Ray masks (only traces that declare them have candidates they hide).
+  if (c.rejected_mask > 0) j["rejected_by"]["mask"] = c.rejected_mask;
+  return j;
 }
 
 nlohmann::json traversal_json(const TraversalCounters& t, uint64_t rays) {

@@ -53,16 +53,23 @@ std::string accel_settings(const std::string& tri_accel) {
   return "tri_accel=" + tri_accel;
 }
 
-/// An intersect context that names the triangle its filter rejects.
+/// An intersect context that names the triangle its filter rejects, and the
+/// triangle masks and ray mask that hide others.
 struct ExcludingContext {
   RTCIntersectContext context;  // first: Embree passes its address to the filter
   uint32_t exclude;
+  const uint32_t* masks;  // null: every triangle has all bits
+  uint32_t ray_mask;
 };
 
 void reject_excluded(const RTCFilterFunctionNArguments* args) {
   const auto* ctx = reinterpret_cast<const ExcludingContext*>(args->context);
-  for (unsigned i = 0; i < args->N; ++i)
-    if (args->valid[i] != 0 && RTCHitN_primID(args->hit, args->N, i) == ctx->exclude) args->valid[i] = 0;
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] == 0) continue;
+    const uint32_t prim = RTCHitN_primID(args->hit, args->N, i);
+    const uint32_t mask = ctx->masks != nullptr ? ctx->masks[prim] : 0xffffffffu;
+    if (prim == ctx->exclude || (mask & ctx->ray_mask) == 0) args->valid[i] = 0;
+  }
 }
 
 RTCRay make_ray(Vec3f o, Vec3f d, float tnear, float tfar) {
@@ -81,7 +88,9 @@ RTCRay make_ray(Vec3f o, Vec3f d, float tnear, float tfar) {
 }  // namespace
 
 EmbreeReference::EmbreeReference(const Scene& scene, const std::string& tri_accel, bool exclusion)
-    : device_(std::make_unique<EmbreeDevice>(accel_settings(tri_accel))), exclusion_(exclusion) {
+    : device_(std::make_unique<EmbreeDevice>(accel_settings(tri_accel))),
+      exclusion_(exclusion),
+      masks_(scene.triangle_masks) {
   scene_ = rtcNewScene(device_->get());
   device_->check("rtcNewScene");
   try {
@@ -130,12 +139,14 @@ bool EmbreeReference::occluded(Vec3f o, Vec3f d, float tnear, float tfar) const 
 }
 
 bool EmbreeReference::intersect_excluding(Vec3f o, Vec3f d, float tnear, float tfar, int32_t exclude,
-                                          int32_t& prim, float& t, float& u, float& v) const {
+                                          int32_t& prim, float& t, float& u, float& v, uint32_t ray_mask) const {
   if (!exclusion_) throw std::logic_error("EmbreeReference::intersect_excluding on a reference built without exclusion");
   ExcludingContext ctx;
   rtcInitIntersectContext(&ctx.context);
   ctx.context.filter = reject_excluded;
   ctx.exclude = static_cast<uint32_t>(exclude);  // -1: no triangle id
+  ctx.masks = masks_.empty() ? nullptr : masks_.data();
+  ctx.ray_mask = ray_mask;
   return intersect_in(ctx.context, o, d, tnear, tfar, prim, t, u, v);
 }
 

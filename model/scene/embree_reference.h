@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "datapath/vec3.h"
 #include "scene/embree_device.h"
@@ -48,10 +49,11 @@ class EmbreeReference {
 
   /// The same closest-hit query with triangle `exclude` never hit (a
   /// renderer's primitive-ID exclusion, as a filter function that rejects it);
-  /// -1 excludes nothing. Only on a reference built with `exclusion`
-  /// (std::logic_error otherwise).
+  /// -1 excludes nothing. The same filter hides the triangles whose mask
+  /// (the scene's triangle_masks) shares no bit with `ray_mask`. Only on a
+  /// reference built with `exclusion` (std::logic_error otherwise).
   bool intersect_excluding(Vec3f o, Vec3f d, float tnear, float tfar, int32_t exclude, int32_t& prim, float& t,
-                           float& u, float& v) const;
+                           float& u, float& v, uint32_t ray_mask = 0xffffffffu) const;
 
  private:
   /// rtcIntersect1 of o + t d, t in [tnear, tfar], in `context`: the closest-hit queries' one body.
@@ -61,6 +63,7 @@ class EmbreeReference {
   std::unique_ptr<EmbreeDevice> device_;  // outlives scene_ (released after it)
   RTCScene scene_ = nullptr;
   bool exclusion_ = false;
+  std::vector<uint32_t> masks_;  ///< the scene's triangle_masks (empty: all bits)
 };
 
 }  // namespace vbsim

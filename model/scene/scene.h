@@ -57,9 +57,14 @@ struct Scene {
   std::vector<Triangle> triangles;              ///< index = triangle id
   std::vector<std::array<Vec3f, 3>> normals;    ///< per-vertex shading normals, or empty
   Bounds3f bounds;
+  /// Per-triangle ray-mask bits (a trace header's triangle_masks,
+  /// scene/triangle_masks.h), or empty: every triangle has all bits.
+  std::vector<uint32_t> triangle_masks;
 
   int32_t size() const { return static_cast<int32_t>(triangles.size()); }
   bool has_normals() const { return !normals.empty(); }
+  /// The mask of triangle k at [k], or null when the scene has no masks.
+  const uint32_t* mask_table() const { return triangle_masks.empty() ? nullptr : triangle_masks.data(); }
   /// Shading normal at barycentrics (u, v): (1-u-v) n0 + u n1 + v n2, unnormalised.
   /// Precondition: has_normals().
   Vec3f shading_normal(int32_t prim, float u, float v) const;

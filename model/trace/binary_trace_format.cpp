@@ -112,7 +112,13 @@ void encode_binary_trace_record(const TraceRay& ray, uint8_t* out, uint32_t vers
     flags |= kHasSign;
     out[off::sign] = static_cast<uint8_t>(ray.sign);
   }
-  if (version == kBinaryTraceReferenceLayoutVersion) {
+  if (binary_layout_has_mask(version)) {
+    store_u32(out + off::mask, ray.mask);
+    store_u32(out + off::reserved, 0);
+  } else if (ray.mask != kAllMaskBits) {
+    throw TraceFieldProblem{"mask", "the header declares no ray masks, so the layout has no room for one"};
+  }
+  if (binary_layout_has_reference(version)) {
     store_u32(out + off::reference_prim, static_cast<uint32_t>(ray.has_reference ? ray.reference_prim : -1));
     if (ray.has_reference) flags |= kHasReference;
     if (ray.has_reference_t) {
@@ -129,7 +135,7 @@ void encode_binary_trace_record(const TraceRay& ray, uint8_t* out, uint32_t vers
 bool decode_binary_trace_record(const uint8_t* in, TraceRay& out, TraceFieldProblem& problem, uint32_t version) {
   uint16_t flags = load_u16(in + off::flags);
   const uint16_t known =
-      version == kBinaryTraceReferenceLayoutVersion ? kBinaryTraceReferenceKnownFlags : kBinaryTraceKnownFlags;
+      binary_layout_has_reference(version) ? kBinaryTraceReferenceKnownFlags : kBinaryTraceKnownFlags;
   if (flags & ~known) return fail(problem, "flags", fmt::format("unknown flag bits 0x{:04x}", flags & ~known));
   if ((flags & kHasReferenceT) && !(flags & kHasReference))
     return fail(problem, "reference.t", "flag has_reference_t set without has_reference");
@@ -139,6 +145,8 @@ bool decode_binary_trace_record(const uint8_t* in, TraceRay& out, TraceFieldProb
                 fmt::format("unknown reason bits 0x{:x}", incomplete & ~kIncompleteKnownBits));
   if ((flags & kHasExpectT) && !(flags & kHasExpect))
     return fail(problem, "expect.t", "flag has_expect_t set without has_expect");
+  if (binary_layout_has_mask(version) && load_le_u32(in + off::reserved) != 0)
+    return fail(problem, "reserved", "bytes 108-111 of a layout 3 record must be 0");
   out = TraceRay{};
   out.id = static_cast<int64_t>(load_u64(in + off::id));
   out.parent = static_cast<int64_t>(load_u64(in + off::parent));
@@ -183,6 +191,7 @@ bool decode_binary_trace_record(const uint8_t* in, TraceRay& out, TraceFieldProb
     out.has_reference_t = true;
     out.reference_t = load_le_f32(in + off::reference_t);
   }
+  if (binary_layout_has_mask(version)) out.mask = load_le_u32(in + off::mask);
   return true;
 }
 

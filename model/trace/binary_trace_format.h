@@ -23,6 +23,10 @@ constexpr uint32_t kBinaryTraceLayoutVersion = 1;
 /// when the header names a `reference`).
 constexpr uint32_t kBinaryTraceReferenceLayoutVersion = 2;
 constexpr std::size_t kBinaryTraceReferenceRecordBytes = 104;
+/// Layout 3: layout 2's record followed by the ray's mask and 4 reserved
+/// bytes (written when the header declares `triangle_masks`).
+constexpr uint32_t kBinaryTraceMaskLayoutVersion = 3;
+constexpr std::size_t kBinaryTraceMaskRecordBytes = 112;
 constexpr std::size_t kBinaryTracePreambleBytes = 16;  ///< magic + version + header length
 constexpr std::size_t kBinaryTraceRecordBytes = 96;
 constexpr uint32_t kBinaryTraceMaxHeaderBytes = 1u << 24;  ///< readers reject longer headers
@@ -64,11 +68,27 @@ constexpr uint16_t kBinaryTraceReferenceKnownFlags = 0xff;
 namespace binary_trace_offset {
 constexpr std::size_t reference_prim = 96;  ///< layout 2: i32, valid with kHasReference
 constexpr std::size_t reference_t = 100;    ///< layout 2: f32, valid with kHasReferenceT
+constexpr std::size_t mask = 104;           ///< layout 3: u32, the ray's mask (all bits: none given)
+constexpr std::size_t reserved = 108;       ///< layout 3: u32, 0
 }  // namespace binary_trace_offset
 
-/// Record bytes of layout `version` (1 or 2).
+/// Whether records of layout `version` hold the reference answer (2 and 3).
+constexpr bool binary_layout_has_reference(uint32_t version) { return version >= kBinaryTraceReferenceLayoutVersion; }
+/// Whether they hold the ray's mask (3).
+constexpr bool binary_layout_has_mask(uint32_t version) { return version == kBinaryTraceMaskLayoutVersion; }
+
+/// The layout a writer uses for `header`: 3 when it declares ray masks, 2
+/// when it names a reference, else 1 (what every earlier writer wrote).
+inline uint32_t binary_trace_layout_for(const TraceHeader& header) {
+  if (header.triangle_masks) return kBinaryTraceMaskLayoutVersion;
+  return header.reference.empty() ? kBinaryTraceLayoutVersion : kBinaryTraceReferenceLayoutVersion;
+}
+
+/// Record bytes of layout `version` (1, 2 or 3).
 constexpr std::size_t binary_trace_record_bytes(uint32_t version) {
-  return version == kBinaryTraceReferenceLayoutVersion ? kBinaryTraceReferenceRecordBytes : kBinaryTraceRecordBytes;
+  return binary_layout_has_mask(version)        ? kBinaryTraceMaskRecordBytes
+         : binary_layout_has_reference(version) ? kBinaryTraceReferenceRecordBytes
+                                                : kBinaryTraceRecordBytes;
 }
 
 /// Bytes the header JSON occupies in the file: n rounded up to a multiple of 8.
@@ -78,12 +98,14 @@ constexpr std::size_t binary_trace_padded_header_bytes(std::size_t n) { return (
 void encode_binary_trace_preamble(uint32_t header_bytes, uint8_t* out, uint32_t version = kBinaryTraceLayoutVersion);
 
 /// Writes `ray` as one record (binary_trace_record_bytes(version) bytes at
-/// `out`); layout 1 cannot hold a reference answer (a TraceFieldProblem).
+/// `out`); layout 1 cannot hold a reference answer, layouts 1 and 2 no ray
+/// mask other than all bits (a TraceFieldProblem).
 void encode_binary_trace_record(const TraceRay& ray, uint8_t* out, uint32_t version = kBinaryTraceLayoutVersion);
 
 /// Reads one record of layout `version` into `out`. Rejects what the layout
 /// itself forbids (unknown flag bits or incomplete bits, a sign byte other
-/// than 0/1, expect.t without expect, reference.t without reference); the
+/// than 0/1, expect.t without expect, reference.t without reference, reserved
+/// bytes other than 0); the
 /// format's ray rules are check_trace_ray's.
 bool decode_binary_trace_record(const uint8_t* record, TraceRay& out, TraceFieldProblem& problem,
                                 uint32_t version = kBinaryTraceLayoutVersion);

@@ -28,11 +28,11 @@ BinaryTraceReader::BinaryTraceReader(std::string path, std::ifstream in) : path_
   if (got < sizeof preamble)
     throw TraceError::in_file(path_, "truncated: the file ends inside its 16-byte preamble");
   const uint32_t version = load_le_u32(preamble + 8);
-  if (version != kBinaryTraceLayoutVersion && version != kBinaryTraceReferenceLayoutVersion)
+  if (version < kBinaryTraceLayoutVersion || version > kBinaryTraceMaskLayoutVersion)
     throw TraceError::in_file(path_, fmt::format("unsupported binary layout version {} (this "
-                                                 "reader reads {} and {})",
+                                                 "reader reads {} to {})",
                                                  version, kBinaryTraceLayoutVersion,
-                                                 kBinaryTraceReferenceLayoutVersion));
+                                                 kBinaryTraceMaskLayoutVersion));
   version_ = version;
   uint32_t header_bytes = load_le_u32(preamble + 12);
   if (header_bytes == 0 || header_bytes > kBinaryTraceMaxHeaderBytes)
@@ -63,6 +63,12 @@ BinaryTraceReader::BinaryTraceReader(std::string path, std::ifstream in) : path_
   } catch (const TraceFieldProblem& p) {
     throw TraceError::in_header(path_, p.field, p.message);
   }
+  if (header_.triangle_masks.has_value() != binary_layout_has_mask(version_))
+    throw TraceError::in_header(path_, "triangle_masks",
+                                fmt::format("layout {} {} ray masks but the header {} them (layout 3 holds them, "
+                                            "and only a header with triangle_masks selects it)",
+                                            version_, binary_layout_has_mask(version_) ? "holds" : "has no room for",
+                                            header_.triangle_masks ? "declares" : "does not declare"));
 
   records_ = RecordFileReader(path_, std::move(in), kBinaryTracePreambleBytes + padded,
                               {binary_trace_record_bytes(version_), kRecordsPerRead, ""});

@@ -30,7 +30,7 @@ std::string binary_trace_prefix(const std::string& path, const TraceHeader& head
 
 BinaryTraceWriter::BinaryTraceWriter(std::string path, const TraceHeader& header)
     : path_(std::move(path)),
-      version_(header.reference.empty() ? kBinaryTraceLayoutVersion : kBinaryTraceReferenceLayoutVersion),
+      version_(binary_trace_layout_for(header)),
       records_(path_, binary_trace_record_bytes(version_), kRecordsPerWrite,
                binary_trace_prefix(path_, header, version_)) {}
 
@@ -39,9 +39,12 @@ void BinaryTraceWriter::write(const TraceRay& ray) {
   TraceFieldProblem problem;
   if (!validator_.check(ray, problem))
     throw TraceError::at_record(path_, records_.records_written(), problem.field, problem.message);
-  if (ray.has_reference && version_ != kBinaryTraceReferenceLayoutVersion)
+  if (ray.has_reference && !binary_layout_has_reference(version_))
     throw TraceError::at_record(path_, records_.records_written(), "reference",
                                 "the header names no reference (its \"reference\" field says what gave the answers)");
+  if (ray.mask != kAllMaskBits && !binary_layout_has_mask(version_))
+    throw TraceError::at_record(path_, records_.records_written(), "mask",
+                                "the header declares no ray masks (triangle_masks)");
   records_.append([&](uint8_t* record) { encode_binary_trace_record(ray, record, version_); });
 }
 

@@ -25,7 +25,7 @@ class BinaryTraceWriter final : public TraceSink {
 
  private:
   std::string path_;
-  uint32_t version_;  ///< layout 2 when the header names a reference, else 1
+  uint32_t version_;  ///< binary_trace_layout_for(header)
   RecordFileWriter records_;
   TraceRayValidator validator_;
 };

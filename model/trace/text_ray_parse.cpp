@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "trace/incomplete_reasons.h"
+#include "trace/trace_header_json.h"
 #include "trace/trace_json_values.h"
 #include "trace/trace_validation.h"
 
@@ -95,6 +96,7 @@ void parse_trace_ray(const json& object, TraceRay& out) {
       }
     }
   }
+  if (const json* v = find_field(object, "mask")) out.mask = parse_ray_mask(*v);
   if (const json* v = find_field(object, "incomplete")) {
     if (!v->is_array())
       throw TraceFieldProblem{"incomplete", fmt::format("expected an array of reasons ({}), got {}",

@@ -67,6 +67,10 @@ void TextTraceReader::validate(const TraceRay& out) {
   if (out.has_reference && header_.reference.empty())
     throw TraceError::at_line(path_, line_number_, "reference",
                               "the header names no reference (its \"reference\" field says what gave the answers)");
+  if (out.mask != kAllMaskBits && !header_.triangle_masks)
+    throw TraceError::at_line(path_, line_number_, "mask",
+                              "the header declares no ray masks (its \"triangle_masks\" field, [] when only rays "
+                              "carry masks)");
 }
 
 bool TextTraceReader::next(TraceRay& out) {

@@ -77,6 +77,7 @@ void append_trace_ray_json(fmt::memory_buffer& out, const TraceRay& ray) {
       out.push_back('}');
     }
   }
+  if (ray.mask != kAllMaskBits) fmt::format_to(it, ",\"mask\":{}", ray.mask);
   if (ray.incomplete != 0) {
     text(out, ",\"incomplete\":[");
     bool first = true;
@@ -91,7 +92,7 @@ void append_trace_ray_json(fmt::memory_buffer& out, const TraceRay& ray) {
 }
 
 TextTraceWriter::TextTraceWriter(std::string path, const TraceHeader& header)
-    : path_(std::move(path)) {
+    : path_(std::move(path)), masks_declared_(header.triangle_masks.has_value()) {
   std::string header_line;
   try {
     header_line = trace_header_json(header);
@@ -121,6 +122,8 @@ void TextTraceWriter::write(const TraceRay& ray) {
   TraceFieldProblem problem;
   if (!validator_.check(ray, problem))
     throw TraceError::at_line(path_, line_number_ + 1, problem.field, problem.message);
+  if (ray.mask != kAllMaskBits && !masks_declared_)
+    throw TraceError::at_line(path_, line_number_ + 1, "mask", "the header declares no ray masks (triangle_masks)");
   append_trace_ray_json(line_, ray);
   flush_line();
 }

@@ -40,6 +40,7 @@ class TextTraceWriter final : public TraceSink {
   void flush_line();
 
   std::string path_;
+  bool masks_declared_;  ///< the header has triangle_masks: rays may carry a mask
   std::unique_ptr<AtomicOutputFile> out_;
   fmt::memory_buffer line_;
   int64_t line_number_ = 0;  ///< 1-based number of the line last written

@@ -20,7 +20,41 @@ const json* find_field(const json& object, const char* key) {
   return it == object.end() ? nullptr : &*it;
 }
 
+/// A mask: an integer 0 .. 2^32 - 1.
+uint32_t json_mask(const json& v, const char* field) {
+  const int64_t m = json_int64(v, field);
+  if (m < 0 || m > int64_t{kAllMaskBits})
+    throw TraceFieldProblem{field, fmt::format("a mask is an integer from 0 to 4294967295, got {}", m)};
+  return static_cast<uint32_t>(m);
+}
+
+/// `triangle_masks`: [[first, count, mask], ...], ranges ascending and disjoint.
+std::vector<TriangleMaskRange> parse_triangle_masks(const json& v) {
+  const char* field = "triangle_masks";
+  if (!v.is_array())
+    throw TraceFieldProblem{field, fmt::format("expected an array of [first, count, mask], got {}", v.dump())};
+  std::vector<TriangleMaskRange> out;
+  uint64_t end = 0;
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    const json& e = v[i];
+    if (!e.is_array() || e.size() != 3)
+      throw TraceFieldProblem{field, fmt::format("entry {}: expected [first, count, mask], got {}", i, e.dump())};
+    const int64_t first = json_int64(e[0], field), count = json_int64(e[1], field);
+    if (first < 0 || first > INT32_MAX || count < 1 || count > INT32_MAX)
+      throw TraceFieldProblem{field, fmt::format("entry {}: first must be a triangle index and count at least 1, "
+                                                 "got [{}, {}]", i, first, count)};
+    if (static_cast<uint64_t>(first) < end)
+      throw TraceFieldProblem{field, fmt::format("entry {}: starts at triangle {}, inside or before the range "
+                                                 "before it (ranges ascend and do not overlap)", i, first)};
+    end = static_cast<uint64_t>(first) + static_cast<uint64_t>(count);
+    out.push_back({static_cast<uint32_t>(first), static_cast<uint32_t>(count), json_mask(e[2], field)});
+  }
+  return out;
+}
+
 }  // namespace
+
+uint32_t parse_ray_mask(const json& v) { return json_mask(v, "mask"); }
 
 TraceHeader parse_trace_header(const json& object, const std::string& trace_path) {
   const json* format = find_field(object, "format");
@@ -61,6 +95,7 @@ TraceHeader parse_trace_header(const json& object, const std::string& trace_path
     json_float32_array(*transform, "transform", m.data(), m.size());
     header.transform = m;
   }
+  if (const json* masks = find_field(object, "triangle_masks")) header.triangle_masks = parse_triangle_masks(*masks);
   if (const json* provenance = find_field(object, "provenance")) {
     if (!provenance->is_object()) throw TraceFieldProblem{"provenance", "must be an object"};
     header.provenance = provenance->dump(-1, ' ', false, json::error_handler_t::replace);
@@ -99,6 +134,15 @@ std::string trace_header_json(const TraceHeader& header) {
       if (!std::isfinite(x)) throw TraceFieldProblem{"transform", "is not finite"};
       if (i > 0) out.push_back(',');
       append_json_float(out, x);
+    }
+    out.push_back(']');
+  }
+  if (header.triangle_masks) {
+    text(",\"triangle_masks\":[");
+    bool first = true;
+    for (const TriangleMaskRange& r : *header.triangle_masks) {
+      fmt::format_to(std::back_inserter(out), "{}[{},{},{}]", first ? "" : ",", r.first, r.count, r.mask);
+      first = false;
     }
     out.push_back(']');
   }

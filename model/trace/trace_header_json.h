@@ -15,18 +15,22 @@ constexpr int kTraceFormatVersion = 1;                     ///< the header's "ve
 
 /// Reads a header object: format "vbsim-trace", version 1, scene (non-empty
 /// string) required; light [3 numbers], generator, description (strings) and
-/// transform [16 numbers] and provenance (an object, kept as compact JSON)
+/// transform [16 numbers], triangle_masks ([[first, count, mask], ...],
+/// ascending, disjoint) and provenance (an object, kept as compact JSON)
 /// optional; unknown fields ignored. scene_path is
 /// `scene` resolved against the directory of `trace_path`.
 /// Throws TraceFieldProblem naming the field.
 TraceHeader parse_trace_header(const nlohmann::json& object, const std::string& trace_path);
 
 /// The header as one compact JSON object (no newline), fields in the order
-/// format, version, scene, light, generator, description, transform,
-/// provenance (written as given); absent
+/// format, version, scene, light, generator, description, reference,
+/// transform, triangle_masks, provenance (written as given); absent
 /// optional fields and empty strings are omitted; numbers as shortest float32.
 /// Throws TraceFieldProblem when a string is not UTF-8 or a number not finite.
 std::string trace_header_json(const TraceHeader& header);
+
+/// A ray's `mask` field: an integer 0 .. 2^32 - 1 (TraceFieldProblem "mask" otherwise).
+uint32_t parse_ray_mask(const nlohmann::json& v);
 
 /// `scene` (as written in a header) as a path usable from the working
 /// directory: joined to the directory of `trace_path` unless absolute.

@@ -7,11 +7,23 @@
 #include <limits>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "datapath/ray.h"
 #include "datapath/vec3.h"
 
 namespace vbsim {
+
+/// A ray or triangle mask with every bit set: the default of both (a ray sees
+/// a triangle when their masks share a bit, as Embree's ray masks decide).
+constexpr uint32_t kAllMaskBits = 0xffffffffu;
+
+/// Triangles [first, first + count) carry `mask` (the header's `triangle_masks`).
+struct TriangleMaskRange {
+  uint32_t first = 0;
+  uint32_t count = 0;
+  uint32_t mask = kAllMaskBits;
+};
 
 struct TraceHeader {
   int version = 1;
@@ -28,6 +40,10 @@ struct TraceHeader {
   /// Embree); empty when the rays carry none. In the binary form it selects
   /// the layout that holds them (docs/trace-binary.md).
   std::string reference;
+  /// Ray masks (docs/trace-format.md): present when the trace's rays may carry
+  /// a `mask`; each range gives triangles a mask other than all bits (empty:
+  /// every triangle has all bits). In the binary form it selects layout 3.
+  std::optional<std::vector<TriangleMaskRange>> triangle_masks;
 };
 
 /// TraceRay::reference_prim of an occlusion query its renderer found occluded
@@ -73,6 +89,9 @@ struct TraceRay {
   int32_t reference_prim = -1;
   bool has_reference_t = false;  ///< with a triangle: its hit distance
   float reference_t = 0.0f;
+  /// The ray's mask: it sees only triangles whose mask shares a bit with it
+  /// (only when the header declares `triangle_masks`; else all bits).
+  uint32_t mask = kAllMaskBits;
 };
 
 }  // namespace vbsim

@@ -86,6 +86,10 @@ void run_bench(const BenchArgs& a) {
   BenchWorkload w;
   MeterWorkProgress loading("scene", ProgressMeter::terminal_or_null(a.quiet));
   if (file) {
+    if (file->header().triangle_masks)
+      throw std::runtime_error(fmt::format("{}: header: field 'triangle_masks': the bench times Embree without ray "
+                                           "masks, so a trace with masks cannot be compared with it (replay it)",
+                                           a.trace));
     try {
       scene = load_scene(scene_path, file->header().transform, &loading);
     } catch (const SceneError& e) {

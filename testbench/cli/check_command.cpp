@@ -10,6 +10,7 @@
 #include "commands.h"
 #include "progress/work_progress.h"
 #include "scene/scene.h"
+#include "scene/triangle_masks.h"
 #include "threads_option.h"
 #include "trace/checked_trace_source.h"
 #include "trace/incomplete_reasons.h"
@@ -109,7 +110,7 @@ int run_check(const CheckArgs& a) {
   opt.window = static_cast<std::size_t>(a.window);
   try {
     MeterWorkProgress loading("scene", ProgressMeter::terminal_or_null(a.quiet));
-    scene = load_scene(source->header().scene_path, source->header().transform, &loading);
+    scene = load_header_scene(source->header(), &loading);
     source->set_triangle_count(scene.size());
     opt.triangles = &scene.triangles;
   } catch (const SceneError& e) {

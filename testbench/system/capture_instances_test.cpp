@@ -6,6 +6,7 @@
 // answer for every ray that is not marked.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <sstream>
@@ -16,6 +17,7 @@
 #include "capture_test_support.h"
 #include "scene/scene.h"
 #include "trace/incomplete_reasons.h"
+#include "trace/trace_file.h"
 
 using namespace vbsim;
 using namespace vbsim::test;
@@ -131,18 +133,27 @@ TEST_CASE("capture flattens instances set in every transform format Embree accep
   CHECK_THAT(r.output, Catch::Contains(fmt::format("{} differ", differing)));
 }
 
-TEST_CASE("capture marks the rays a geometry mask hid geometry from", "[cli][capture]") {
-  // testbench/capture/embree_masks_app.cpp: an upper square with mask 0x2 above
-  // a ground square; rays with mask 0x1 do not see it, rays with 0x3 do.
+TEST_CASE("capture carries ray masks into the trace and the replay honours them", "[cli][capture]") {
+  // testbench/capture/embree_masks_app.cpp: an upper square above a ground
+  // square, hidden by masks from some of the rays (masks 0x1, 0x3, 0x6 in turn).
   const auto app = std::filesystem::path(VBSIM_CAPTURE_TEST_APP).parent_path() / "vbsim_capture_masks_app";
-  const auto dir = scratch_dir("capture_masks");
+  // mode, the upper square's mask as the trace holds it, the masks of the rays Embree hid it from
+  struct Case {
+    const char* mode;
+    uint32_t held;
+    std::vector<unsigned> hidden_from;
+    std::vector<unsigned> marked;  // rays whose masks the trace cannot hold
+  };
+  const Case c = GENERATE(Case{"geometry", 0x2u, {0x1u}, {}}, Case{"instance", 0x2u, {0x1u}, {}},
+                          Case{"both", 0x2u, {0x1u, 0x3u}, {0x3u}});
+  INFO("mode " << c.mode);
+  const auto dir = scratch_dir(std::string("capture_masks_") + c.mode);
   const auto out = dir / "cap";
-  RunResult r = run_vbsim("capture -o " + out.string() + " -- " + app.string() + " " + (dir / "app.txt").string());
+  const std::string app_run = app.string() + " " + (dir / "app.txt").string() + " " + c.mode;
+  RunResult r = run_vbsim("capture -o " + out.string() + " -- " + app_run);
   INFO(r.output);
-  CHECK(r.exit_code == 1);  // marked rays, without --allow-partial
-  CHECK_THAT(r.output, Catch::Contains("mask"));
-  r = run_vbsim("capture --allow-partial -o " + out.string() + " -- " + app.string() + " " + (dir / "app.txt").string());
-  REQUIRE(r.exit_code == 0);
+  CHECK(r.exit_code == (c.marked.empty() ? 0 : 1));  // marked rays need --allow-partial
+  if (!c.marked.empty()) REQUIRE(run_vbsim("capture --allow-partial -o " + out.string() + " -- " + app_run).exit_code == 0);
   std::vector<std::pair<unsigned, unsigned>> app_rays;  // (ray mask, Embree's geomID)
   std::istringstream in(read_file(dir / "app.txt"));
   for (std::string word; in >> word;) {
@@ -150,26 +161,45 @@ TEST_CASE("capture marks the rays a geometry mask hid geometry from", "[cli][cap
     in >> mask >> geom;
     app_rays.emplace_back(mask, geom);
   }
+  auto file = open_trace((out / "trace.jsonl").string());
+  REQUIRE(file->header().triangle_masks);
+  const std::vector<TriangleMaskRange>& ranges = *file->header().triangle_masks;
+  // The ground is triangles 0-1 (all bits), the upper square 2-3.
+  REQUIRE(ranges.size() == 1);
+  CHECK(ranges[0].first == 2);
+  CHECK(ranges[0].count == 2);
+  CHECK(ranges[0].mask == c.held);
   const std::vector<TraceRay> trace = read_trace(out / "trace.jsonl");
   REQUIRE(trace.size() == app_rays.size());
   REQUIRE(trace.size() == 64);
+  auto among = [](unsigned m, const std::vector<unsigned>& v) { return std::find(v.begin(), v.end(), m) != v.end(); };
   for (std::size_t i = 0; i < trace.size(); ++i) {
     INFO("ray " << i << " mask " << app_rays[i].first);
-    if (app_rays[i].first == 0x1) {
-      CHECK(app_rays[i].second == 0);  // Embree answered the ground: the upper square was hidden
-      CHECK(trace[i].incomplete == kIncompleteMask);
-    } else {
-      CHECK(app_rays[i].second == 1);  // the upper square
-      CHECK(trace[i].incomplete == 0);
-    }
+    CHECK(trace[i].mask == app_rays[i].first);
+    CHECK(app_rays[i].second == (among(app_rays[i].first, c.hidden_from) ? 0u : 1u));  // 0: the ground
+    CHECK(trace[i].incomplete == (among(app_rays[i].first, c.marked) ? kIncompleteMask : 0u));
   }
-  // The unmarked rays replay to Embree's answer: the upper square's triangles.
+  // The replay reproduces Embree's answer on every unmarked ray, the hidden
+  // square's candidates rejected by the mask.
   const auto hits = out / "replay.hits";
-  REQUIRE(run_vbsim("replay -q " + (out / "trace.jsonl").string() + " --hits " + hits.string()).exit_code == 0);
+  const auto stats = out / "stats.json";
+  REQUIRE(run_vbsim("replay -q " + (out / "trace.jsonl").string() + " --hits " + hits.string() + " --stats " +
+                    stats.string()).exit_code == 0);
+  CHECK(nlohmann::json::parse(read_file(stats))["avoidance"]["rejected_by"]["mask"].get<int>() > 0);
   r = run_vbsim("compare-reference -q " + hits.string() + " " + (out / "embree_hits.jsonl").string());
   std::istringstream diffs(r.output);
+  int differing = 0;
   for (std::string line; std::getline(diffs, line);) {
     const auto j = nlohmann::json::parse(line);
     CHECK(trace.at(j["id"].get<std::size_t>()).incomplete == kIncompleteMask);
+    ++differing;
   }
+  CHECK(differing == static_cast<int>(std::count_if(trace.begin(), trace.end(),
+                                                     [](const TraceRay& t) { return t.incomplete != 0; })));
+  // The exact answers honour the masks as well: the cycle-level replay, scored, finds no error.
+  const auto scored = out / "scored.jsonl";
+  REQUIRE(run_vbsim("oracle -q " + (out / "trace.jsonl").string() + " -o " + scored.string()).exit_code == 0);
+  REQUIRE(run_vbsim("replay -q --mode cycle " + scored.string() + " --stats " + stats.string()).exit_code == 0);
+  const auto j = nlohmann::json::parse(read_file(stats));
+  CHECK(j["verdicts"]["correct"].get<int>() == 64 - differing);
 }

@@ -71,4 +71,14 @@ TEST_CASE("capture refuses a program with Embree's functions of its own with a r
                            Catch::Contains("statically linked Embree"));
   CHECK(!std::filesystem::exists(dir / "cap" / "raw"));
   CHECK(!std::filesystem::exists(dir / "cap" / "trace.jsonl"));
+  // Stripped of its symbols, it is told by Embree's device class in its bytes,
+  // and refused before it runs all the same (it would print "100 misses").
+  r = run_vbsim("capture -o " + (dir / "stripped").string() + " -- " +
+                test_program("vbsim_capture_own_rtc_app_stripped").string());
+  INFO(r.output);
+  CHECK(r.exit_code == 1);
+  CHECK_THAT(r.output, Catch::Contains("holds Embree's code") && Catch::Contains("stripped of its symbols"));
+  CHECK_THAT(r.output, !Catch::Contains("misses"));
+  CHECK(!std::filesystem::exists(dir / "stripped" / "raw"));
+  CHECK(!std::filesystem::exists(dir / "stripped" / "trace.jsonl"));
 }

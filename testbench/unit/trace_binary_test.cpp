@@ -263,8 +263,11 @@ TEST_CASE("binary trace: bad records name the record and field", "[trace]") {
   e = error_after([](std::string& b) { b[3] = 'X'; });
   CHECK(e.place == TraceError::Place::File);
   CHECK_THAT(e.message, Catch::Contains("magic"));
-  e = error_after([](std::string& b) { b[8] = 3; });  // 1 and 2 (with reference answers) are known
-  CHECK_THAT(e.message, Catch::Contains("version 3"));
+  e = error_after([](std::string& b) { b[8] = 4; });  // 1, 2 (reference answers) and 3 (ray masks) are known
+  CHECK_THAT(e.message, Catch::Contains("version 4"));
+  e = error_after([](std::string& b) { b[8] = 3; });  // layout 3 under a header without triangle_masks
+  CHECK(e.place == TraceError::Place::Header);
+  CHECK(e.field == "triangle_masks");
   e = error_after([](std::string& b) { b[16 + 2] = 'F'; });  // "Format": no format field
   CHECK(e.place == TraceError::Place::Header);
   CHECK(e.field == "format");
