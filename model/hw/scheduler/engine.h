@@ -19,6 +19,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -32,6 +33,7 @@
 #include "hw/memory/bvh_address_map.h"
 #include "hw/memory/ideal_memory.h"
 #include "hw/memory/l1_cache.h"
+#include "hw/memory/object_caches.h"
 #include "hw/scheduler/cycle_engine.h"
 #include "hw/scheduler/engine_slot.h"
 #include "hw/scheduler/engine_tracer.h"
@@ -173,6 +175,7 @@ class Engine final : public CycleEngine, private SourceHost {
     events_.schedule(ready, resumed_id_ + slot);  // the step's second half runs at `ready`
   }
   std::string slot_report(size_t max_slots) const override;
+  void fast_forward(SampledFeed& feed) override;  // hw/scheduler/engine_fast_forward.h
 
  private:
   using Slot = EngineSlot<Tester>;
@@ -344,6 +347,18 @@ class Engine final : public CycleEngine, private SourceHost {
   MemoryClock* memory_clock_;
   std::function<void(uint64_t)> memory_step_;
   EventWheel events_{resumed_id_ + source_id_};
+  // Sampled simulation (engine_fast_forward.h): the fast-forwarded rays'
+  // search, and what their reads warm per core (null where the core's memory
+  // is neither a built-in L1 nor object caches: not warmed).
+  struct FastForward {
+    explicit FastForward(const Bvh& bvh, const CandidateFilter& filter, int depth) : stepper(bvh, filter, depth) {}
+    BvhStepper<Tester> stepper;
+    std::vector<L1Cache*> l1;
+    std::vector<ObjectCaches*> objects;
+    uint32_t next_core = 0;
+  };
+  std::unique_ptr<FastForward> fast_forward_;  // made at the first fast_forward()
+  void warm_read(uint32_t core, uint64_t addr, uint32_t bytes);
   std::vector<Slot> slots_;
   std::vector<UnitPipelines> controllers_;  ///< per core (hw.controller; empty: none)
   bool stopped_ = false;
