@@ -4,6 +4,7 @@
 
 #include <atomic>
 #include <csignal>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <memory>
@@ -155,6 +156,9 @@ ReplayStats run_cycle_mode(const ReplayArgs& a, const ReplayOptions& opt, const 
       hw::SamplingConfig sampling = a.sampling;
       if (!a.sample_error.empty()) sampling.error = parse_sample_error(a.sample_error);
       sampling.warm = !a.sample_no_warm;
+      // The tail stratum needs the trace's length beforehand: read from a file, unknown from a pipe.
+      std::error_code ec;
+      if (std::filesystem::is_regular_file(a.trace, ec)) sampling.total = count_trace_rays(a.trace);
       try {
         hw::check_sampling_config(sampling);
       } catch (const std::invalid_argument& e) {
@@ -195,7 +199,8 @@ void check_mode_options(const ReplayArgs& a) {
         "'--timeline-cycles', '--trace-scope', '--deps', '--missing-parents', '--ray-log', '--interval-stats', "
         "'--interval', '--warmup-rays' and '--warmup-cycles' need '--mode cycle'");
   if (a.sample_options_given && !a.sample)
-    throw UsageError("options '--sample-unit', '--sample-interval', '--sample-warmup', '--sample-offset', "
+    throw UsageError("options '--sample-unit', '--sample-interval', '--sample-warmup', '--sample-head', "
+                     "'--sample-tail', '--sample-offset', "
                      "'--sample-confidence', '--sample-error', '--sample-min-units' and '--sample-no-warm' need "
                      "'--sample'");
   if (a.sample && a.mode != "cycle") throw UsageError("option '--sample' needs '--mode cycle'");
@@ -376,6 +381,12 @@ void add_replay_command(CLI::App& app) {
           ->capture_default_str(),
       cmd->add_option("--sample-warmup", args->sampling.warmup,
                       "with --sample: rays simulated in detail, unmeasured, before each measured unit")
+          ->capture_default_str(),
+      cmd->add_option("--sample-head", args->sampling.head,
+                      "with --sample: the trace's first rays, simulated in detail and measured whole")
+          ->capture_default_str(),
+      cmd->add_option("--sample-tail", args->sampling.tail,
+                      "with --sample: its last rays, the same (a trace read from a pipe has none)")
           ->capture_default_str(),
       cmd->add_option("--sample-offset", args->sampling.offset,
                       "with --sample: which unit of each interval is measured, 0 .. K-1 [K/2]"),

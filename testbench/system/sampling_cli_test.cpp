@@ -32,7 +32,7 @@ TEST_CASE("a sampled replay writes its estimates with their intervals and the fu
   REQUIRE(full.exit_code == 0);
   const RunResult r = run_vbsim("replay " + trace +
                                 " --mode cycle -m validity-bit --sample --sample-unit 50 --sample-interval 4 "
-                                "--sample-warmup 100 --stats " +
+                                "--sample-warmup 50 --sample-head 100 --sample-tail 100 --stats " +
                                 (dir / "s.json").string() + " --hits " + (dir / "s.hits").string());
   INFO(r.output);
   REQUIRE(r.exit_code == 0);
@@ -43,9 +43,12 @@ TEST_CASE("a sampled replay writes its estimates with their intervals and the fu
   const auto& sampling = s["hw"]["sampling"];
   CHECK(sampling["parameters"]["unit"] == 50);
   CHECK(sampling["parameters"]["interval"] == 4);
-  CHECK(sampling["parameters"]["warmup"] == 100);
+  CHECK(sampling["parameters"]["warmup"] == 50);
+  CHECK(sampling["parameters"]["total"] == 1008);
+  CHECK(sampling["strata"]["head"]["rays"] == 100);
+  CHECK(sampling["strata"]["tail"]["rays"] == 100);
   CHECK(sampling["confidence"] == 0.95);
-  CHECK(sampling["units_measured"].get<uint64_t>() >= 5);
+  CHECK(sampling["units_measured"] == 4);  // body units 2, 6, 10, 14 from position 100
   const auto& iv = sampling["intervals"]["cycles"];
   REQUIRE(iv.is_array());
   CHECK(iv[0].get<double>() <= s["hw"]["cycles"].get<double>());
@@ -62,8 +65,8 @@ TEST_CASE("a sampled replay stops measuring at its error target and says so", "[
   const auto dir = scratch_dir("sampling_stop");
   // A loose target reached after the minimum of units, and one never reached.
   RunResult r = run_vbsim("replay " + trace +
-                          " --mode cycle --sample --sample-unit 20 --sample-interval 2 --sample-warmup 20 "
-                          "--sample-min-units 4 --sample-error 90% --stats " + (dir / "loose.json").string());
+                          " --mode cycle --sample --sample-unit 20 --sample-interval 2 --sample-warmup 10 --sample-head 0 "
+                          "--sample-tail 0 --sample-min-units 4 --sample-error 90% --stats " + (dir / "loose.json").string());
   INFO(r.output);
   REQUIRE(r.exit_code == 0);
   auto s = nlohmann::json::parse(read_file(dir / "loose.json"));
@@ -71,12 +74,15 @@ TEST_CASE("a sampled replay stops measuring at its error target and says so", "[
   CHECK(s["hw"]["sampling"]["units_measured"].get<uint64_t>() < 25);
   CHECK(s["hw"]["sampling"]["parameters"]["error"] == Approx(0.9));
   r = run_vbsim("replay " + trace +
-                " --mode cycle --sample --sample-unit 20 --sample-interval 2 --sample-warmup 20 "
-                "--sample-error 0.0001 --stats " + (dir / "tight.json").string());
+                " --mode cycle --sample --sample-unit 20 --sample-interval 2 --sample-warmup 10 --sample-head 0 "
+                "--sample-tail 0 --sample-error 0.0001 --stats " + (dir / "tight.json").string());
   REQUIRE(r.exit_code == 0);
   s = nlohmann::json::parse(read_file(dir / "tight.json"));
   CHECK(s["hw"]["sampling"]["measuring_ended"] == "trace ended");
-  CHECK(s["hw"]["sampling"]["units_measured"] == 25);
+  // Units 1, 3, ..., 49 of 20 rays; the last is followed by fast-forwarded rays
+  // only (positions 1000 .. 1007), so it ends in the drain and is left out.
+  CHECK(s["hw"]["sampling"]["units_measured"] == 24);
+  CHECK(s["hw"]["sampling"]["units_left_out"] == 1);
   std::filesystem::remove_all(dir);
 }
 

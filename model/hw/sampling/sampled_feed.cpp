@@ -1,5 +1,8 @@
 #include "hw/sampling/sampled_feed.h"
 
+#include <algorithm>
+#include <iterator>
+
 #include <fmt/format.h>
 
 #include "hw/accelerator.h"
@@ -25,10 +28,11 @@ bool SampledFeed::peek() {
 }
 
 bool SampledFeed::decide_detailed(uint64_t pos) {
+  if (plan_.in_head(pos) || plan_.in_tail(pos)) return true;
   if (!active_ || !plan_.detailed(pos)) return false;
   const uint64_t start = plan_.next_measured_start(pos);
   if (start != planned_start_) {  // the first ray of a new measured unit's warm-up (or of the unit)
-    if (error_reached()) {
+    if (start < plan_.tail_start() && error_reached()) {
       active_ = false;
       stop_reason_ = fmt::format("error target reached at trace position {}", pos);
       return false;
@@ -49,6 +53,11 @@ bool SampledFeed::next_detailed(TraceRay& out) {
           if (i.unit == units_.size() - 1 && i.end) i.count = u.detailed_start + u.rays;
         cross(last_finish_cycle_);
       }
+      if (!units_.empty()) {
+        MeasuredUnit& u = units_.back();
+        u.drained = u.stratum == MeasuredUnit::Stratum::Body && u.detailed_start + u.rays == detailed_ &&
+                    u.trace_start + u.rays < pos_;
+      }
       return false;
     }
     if (stash_detailed_) break;
@@ -56,8 +65,13 @@ bool SampledFeed::next_detailed(TraceRay& out) {
   }
   out = stash_;
   stashed_ = false;
-  if (plan_.measured_unit(plan_.unit_of(stash_pos_)) && stash_pos_ % plan_.unit() == 0) begin_unit(stash_pos_);
-  trace_pos_.push_back(stash_pos_);
+  using Stratum = MeasuredUnit::Stratum;
+  const uint64_t p = stash_pos_;
+  if (p == 0 && plan_.head() > 0) begin_unit(p, Stratum::Head, plan_.head());
+  else if (plan_.starts_measured_unit(p)) begin_unit(p, Stratum::Body, plan_.unit_rays(plan_.body_unit(p)));
+  else if (p == plan_.tail_start()) begin_unit(p, Stratum::Tail, config_.total - p);
+  if (stretches_.empty() || stretches_.back().second + (detailed_ - stretches_.back().first) != stash_pos_)
+    stretches_.emplace_back(detailed_, stash_pos_);
   ++detailed_;
   return true;
 }
@@ -70,11 +84,12 @@ bool SampledFeed::next_fast_forward(TraceRay& out) {
   return true;
 }
 
-void SampledFeed::begin_unit(uint64_t pos) {
+void SampledFeed::begin_unit(uint64_t pos, MeasuredUnit::Stratum stratum, uint64_t rays) {
   MeasuredUnit u;
+  u.stratum = stratum;
   u.trace_start = pos;
   u.detailed_start = detailed_;
-  u.rays = config_.unit;
+  u.rays = rays;
   units_.push_back(u);
   const size_t k = units_.size() - 1;
   pending_.push_back({u.detailed_start, k, false});
@@ -86,7 +101,15 @@ void SampledFeed::detailed_done(const TraceRay& tr, const RayOutcome& out, uint6
   ++finished_;
   last_finish_cycle_ = cycle;
   cross(cycle);
-  if (sink_) sink_(tr, out, cycle, trace_pos_[index]);
+  if (sink_) sink_(tr, out, cycle, trace_position(index));
+}
+
+uint64_t SampledFeed::trace_position(uint64_t index) const {
+  // The last stretch starting at or before `index`.
+  const auto after = std::upper_bound(stretches_.begin(), stretches_.end(), index,
+                                      [](uint64_t i, const std::pair<uint64_t, uint64_t>& s) { return i < s.first; });
+  const auto& s = *std::prev(after);
+  return s.second + (index - s.first);
 }
 
 void SampledFeed::cross(uint64_t cycle) {
@@ -127,8 +150,15 @@ CacheSnapshot SampledFeed::snapshot() const {
 std::vector<const MeasuredUnit*> SampledFeed::complete_units() const {
   std::vector<const MeasuredUnit*> out;
   for (const MeasuredUnit& u : units_)
-    if (u.started && u.ended && u.rays > 0) out.push_back(&u);
+    if (u.stratum == MeasuredUnit::Stratum::Body && u.started && u.ended && u.rays > 0 && !u.drained)
+      out.push_back(&u);
   return out;
+}
+
+const MeasuredUnit* SampledFeed::stratum(MeasuredUnit::Stratum which) const {
+  for (const MeasuredUnit& u : units_)
+    if (u.stratum == which && u.started && u.ended) return &u;
+  return nullptr;
 }
 
 bool SampledFeed::error_reached() const {

@@ -12,10 +12,14 @@
 // no simulated time: the ray source treats a fast-forwarded parent as finished
 // when its child enters (RaySource::set_parents_fast_forwarded).
 //
-// Measurement: with k-th detailed finish at cycle C(k) (C(0) = 0; finishes
-// counted in completion order), a measured unit whose first ray is the d-th
+// The head and tail strata (SamplePlan) are measured as units of their own,
+// whole. Measurement: with C(k) the cycle of the k-th finish among the
+// detailed rays (C(0) = 0; finishes counted in completion order, as SMARTS
+// counts committed instructions), a measured unit whose first ray is the d-th
 // detailed ray and which holds x rays takes C(d + x) - C(d) cycles. With
-// interval 1 the units tile the run and their cycles sum to the run's.
+// interval 1 the units tile the run and their cycles sum to the run's. A unit
+// after which the trace goes on with fast-forwarded rays only ends in the
+// detailed simulation's drain and is left out (MeasuredUnit::drained).
 // L1 and L2 hits and accesses are read at the same two instants.
 //
 // Results reach the user's sink with their trace positions, detailed rays
@@ -24,6 +28,7 @@
 #include <cstdint>
 #include <deque>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "hw/sampling/sample_plan.h"
@@ -39,14 +44,20 @@ struct CacheSnapshot {
   uint64_t l1_hits = 0, l1_accesses = 0, l2_hits = 0, l2_accesses = 0;
 };
 
-/// One measured unit.
+/// One measured unit: a body unit, or the head or the tail stratum measured whole.
 struct MeasuredUnit {
+  enum class Stratum { Head, Body, Tail };
+  Stratum stratum = Stratum::Body;
   uint64_t trace_start = 0;   ///< its first ray's trace position
   uint64_t detailed_start = 0;  ///< its first ray's index among the detailed rays (d)
   uint64_t rays = 0;          ///< x
   uint64_t start_cycle = 0, end_cycle = 0;  ///< C(d), C(d + x)
   CacheSnapshot start, end;
   bool started = false, ended = false;
+  /// The detailed rays end with this unit while the trace goes on: its end
+  /// instant is the detailed simulation's drain, which a full run does not
+  /// have there, so it is left out of the estimates.
+  bool drained = false;
 };
 
 class SampledFeed final {
@@ -82,7 +93,10 @@ class SampledFeed final {
   uint64_t fast_forwarded() const { return fast_forwarded_; }
   /// Why measuring ended: "trace ended" or "error target reached at trace position N".
   const std::string& stop_reason() const { return stop_reason_; }
-  /// The measured units completed so far (both instants known).
+  /// The head or tail stratum's measurement (null: none, or not complete).
+  const MeasuredUnit* stratum(MeasuredUnit::Stratum which) const;
+  const SamplePlan& plan() const { return plan_; }
+  /// The measured body units completed so far (both instants known), but a drained one.
   std::vector<const MeasuredUnit*> complete_units() const;
 
  private:
@@ -92,11 +106,11 @@ class SampledFeed final {
   /// new measured unit's rays would begin there. Called once per position.
   bool decide_detailed(uint64_t pos);
   /// The unit starting at `pos` begins (its first ray is being fed).
-  void begin_unit(uint64_t pos);
+  void begin_unit(uint64_t pos, MeasuredUnit::Stratum stratum, uint64_t rays);
   /// The cycles' relative half-width over the units complete so far has reached the target.
   bool error_reached() const;
   CacheSnapshot snapshot() const;
-  /// Records the instants whose finish count has been reached.
+  /// Records the instants whose finish count has been reached, at `cycle`.
   void cross(uint64_t cycle);
 
   SamplingConfig config_;
@@ -111,7 +125,11 @@ class SampledFeed final {
   uint64_t pos_ = 0;  ///< rays read from the trace
   uint64_t detailed_ = 0, fast_forwarded_ = 0, finished_ = 0, last_finish_cycle_ = 0;
   uint64_t current_unit_start_ = ~uint64_t{0};  ///< trace start of the unit being fed (measured)
-  std::vector<uint64_t> trace_pos_;  ///< of each detailed ray, by detailed index
+  /// The detailed stretches: (first detailed index, its trace position), one
+  /// per run of consecutive detailed rays (no per-ray storage).
+  std::vector<std::pair<uint64_t, uint64_t>> stretches_;
+  /// The trace position of the detailed ray at detailed index `index`.
+  uint64_t trace_position(uint64_t index) const;
   std::vector<MeasuredUnit> units_;
   /// Instants not reached yet, in finish-count order: (count, unit, end?).
   struct Instant {

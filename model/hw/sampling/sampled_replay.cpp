@@ -45,9 +45,29 @@ CycleRunResult run_sampled_cycle_replay(const RayFeed& feed, const Scene& scene,
                   static_cast<double>(u->end.l2_accesses - u->start.l2_accesses)});
   }
   const double conf = sampling.confidence;
-  const RatioEstimate cpr = ratio_estimate(cycles, conf, population);
-  const double total = cpr.ratio * population;
-  const double total_lo = std::max(0.0, cpr.low()) * population, total_hi = cpr.high() * population;
+  // The head and tail strata, measured whole; the body, estimated.
+  double strata_cycles = 0, strata_rays = 0;
+  nlohmann::json strata = nlohmann::json::object();
+  for (const auto& [name, which] : {std::pair<const char*, MeasuredUnit::Stratum>{"head", MeasuredUnit::Stratum::Head},
+                                    {"tail", MeasuredUnit::Stratum::Tail}})
+    if (const MeasuredUnit* u = sampled.stratum(which)) {
+      strata_cycles += static_cast<double>(u->end_cycle - u->start_cycle);
+      strata_rays += static_cast<double>(u->rays);
+      strata[name] = {{"trace_start", u->trace_start}, {"rays", u->rays}, {"cycles", u->end_cycle - u->start_cycle}};
+    }
+  const double body = population - strata_rays;
+  const RatioEstimate cpr_body = ratio_estimate(cycles, conf, body);
+  const bool body_measured = !cycles.empty() || body <= 0;
+  const double body_cycles = body > 0 ? cpr_body.ratio * body : 0;
+  const double body_half = body > 0 ? cpr_body.half_width * body : 0;
+  const double total = strata_cycles + body_cycles;
+  const double total_lo = std::max(0.0, total - body_half), total_hi = total + body_half;
+  // Cycles per ray over the whole trace, its interval from the total's.
+  RatioEstimate cpr;
+  cpr.units = cpr_body.units;
+  cpr.ratio = population > 0 ? total / population : 0;
+  cpr.half_width = population > 0 ? body_half / population : 0;
+  if (!body_measured) cpr.half_width = std::numeric_limits<double>::infinity();
   const double rpc = cpr.ratio > 0 ? 1 / cpr.ratio : 0;
   const double rpc_lo = cpr.high() > 0 && std::isfinite(cpr.high()) ? 1 / cpr.high() : 0;
   const double rpc_hi = cpr.low() > 0 ? 1 / cpr.low() : std::numeric_limits<double>::infinity();
@@ -69,11 +89,16 @@ CycleRunResult run_sampled_cycle_replay(const RayFeed& feed, const Scene& scene,
   s["rays"] = sampled.rays();
   s["rays_fast_forwarded"] = sampled.fast_forwarded();
   s["units_measured"] = cycles.size();
+  uint64_t drained = 0;  // the last body unit, when it ends in the drain
+  for (const MeasuredUnit& u : sampled.units()) drained += u.drained;
+  s["units_left_out"] = drained;
   uint64_t measured_rays = 0;
   for (const MeasuredUnit* u : sampled.complete_units()) measured_rays += u->rays;
   s["rays_measured"] = measured_rays;
   s["measuring_ended"] = sampled.stop_reason();
   s["detailed"] = {{"rays", detailed_rays}, {"cycles", detailed_cycles}};
+  s["strata"] = strata;  // measured whole: their cycles are exact
+  s["body"] = {{"rays", body}, {"cycles_estimate", body_cycles}, {"cycles_per_ray", cpr_body.ratio}};
   nlohmann::json units = nlohmann::json::array();  // each measured unit: what its two instants saw
   for (const MeasuredUnit* u : sampled.complete_units())
     units.push_back({{"trace_start", u->trace_start},
@@ -87,8 +112,7 @@ CycleRunResult run_sampled_cycle_replay(const RayFeed& feed, const Scene& scene,
   s["units"] = std::move(units);
   nlohmann::json est, iv, rel;
   est["cycles"] = total;
-  iv["cycles"] = interval_json(total_lo, std::isfinite(total_hi) ? total_hi : -1);
-  if (!std::isfinite(total_hi)) iv["cycles"] = nullptr;
+  iv["cycles"] = std::isfinite(total_hi) ? interval_json(total_lo, total_hi) : nlohmann::json();
   rel["cycles"] = finite(cpr.relative());
   est["cycles_per_ray"] = cpr.ratio;
   iv["cycles_per_ray"] =
@@ -118,10 +142,13 @@ CycleRunResult run_sampled_cycle_replay(const RayFeed& feed, const Scene& scene,
   if (est.contains("l1_hit_rate")) head += fmt::format(", L1 hit rate {:.4f}", est["l1_hit_rate"].get<double>());
   if (est.contains("l2_hit_rate")) head += fmt::format(", L2 hit rate {:.4f}", est["l2_hit_rate"].get<double>());
   head += fmt::format(
-      "\n  from {} units of {} rays (one every {}, {} warm-up rays before each), {} of {} rays simulated in detail, "
+      "\n  from the first {} and last {} rays measured whole and {} units of {} rays (one every {}, {} warm-up rays "
+      "before each), {} of {} rays simulated in detail, "
       "{} fast-forwarded; measuring ended: {}\n  the hw figures below describe only the {} rays simulated in detail "
       "({} cycles)\n",
-      cycles.size(), sampling.unit, sampling.interval, sampling.warmup, detailed_rays, sampled.rays(),
+      strata.contains("head") ? strata["head"]["rays"].get<uint64_t>() : 0,
+      strata.contains("tail") ? strata["tail"]["rays"].get<uint64_t>() : 0, cycles.size(), sampling.unit,
+      sampling.interval, sampling.warmup, detailed_rays, sampled.rays(),
       sampled.fast_forwarded(), sampled.stop_reason(), detailed_rays, detailed_cycles);
   r.table = head + r.table;
   return r;

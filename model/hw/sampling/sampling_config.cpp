@@ -19,7 +19,8 @@ void check_sampling_config(const SamplingConfig& c) {
 nlohmann::json sampling_config_json(const SamplingConfig& c) {
   return {{"unit", c.unit},         {"interval", c.interval},     {"warmup", c.warmup},
           {"offset", c.measured_offset()}, {"confidence", c.confidence}, {"error", c.error},
-          {"min_units", c.min_units}, {"warm", c.warm}};
+          {"min_units", c.min_units}, {"warm", c.warm}, {"head", c.head}, {"tail", c.tail},
+          {"total", c.total}};
 }
 
 }  // namespace vbsim::hw

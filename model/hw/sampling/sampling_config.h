@@ -4,7 +4,8 @@
 // in every `interval` is measured (the unit `offset` of each interval), after
 // `warmup` rays simulated in detail and not measured; every other ray is
 // fast-forwarded: answered by the functional datapath while its memory reads
-// warm the caches' tags.
+// warm the caches' tags. The trace's first `head` and last `tail` rays are
+// simulated in detail and measured whole (hw/sampling/sample_plan.h).
 #pragma once
 #include <cstdint>
 
@@ -16,6 +17,9 @@ struct SamplingConfig {
   uint64_t unit = 1000;      ///< rays per measurement unit (>= 1)
   uint64_t interval = 10;    ///< one unit measured every `interval` units (>= 1; 1: every unit)
   uint64_t warmup = 1000;    ///< rays simulated in detail, unmeasured, before each measured unit
+  uint64_t head = 10000;     ///< the trace's first rays, simulated in detail and measured whole
+  uint64_t tail = 2000;      ///< its last rays, the same (only when `total` is known)
+  uint64_t total = 0;        ///< the trace's rays when known beforehand (0: unknown, no tail stratum)
   int64_t offset = -1;       ///< the measured unit within each interval, 0 .. interval - 1 (-1: interval / 2)
   double confidence = 0.95;  ///< of the intervals, in (0, 1)
   /// Stopping rule: once the cycles' interval half-width relative to the

@@ -23,6 +23,7 @@
 #include <stdexcept>
 #include <string>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include <fmt/format.h>
@@ -356,9 +357,22 @@ class Engine final : public CycleEngine, private SourceHost {
     std::vector<L1Cache*> l1;
     std::vector<ObjectCaches*> objects;
     uint32_t next_core = 0;
+    /// The reads of fast-forwarded rays, kept until the detailed ray after
+    /// them is dispatched (the source reads ahead of the rays in flight).
+    struct Read {
+      uint64_t addr;
+      uint32_t bytes, core;
+    };
+    std::vector<Read> reads;
+    /// Runs of `reads`: (source position of the detailed ray after them, end in `reads`).
+    std::vector<std::pair<uint64_t, size_t>> runs;
+    size_t applied_runs = 0, applied_reads = 0;
   };
   std::unique_ptr<FastForward> fast_forward_;  // made at the first fast_forward()
+  bool warm_pending_ = false;                  // fast-forwarded reads wait for a dispatch
   void warm_read(uint32_t core, uint64_t addr, uint32_t bytes);
+  /// Warms the caches with the fast-forwarded reads that come before the ray at source position `index`.
+  void apply_warm(uint64_t index);
   std::vector<Slot> slots_;
   std::vector<UnitPipelines> controllers_;  ///< per core (hw.controller; empty: none)
   bool stopped_ = false;

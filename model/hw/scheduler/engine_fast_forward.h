@@ -5,7 +5,10 @@
 // verdict and functional statistics are those of a detailed run; it takes no
 // simulated time and no unit, and its reads (nodes, leaves) only warm the tags
 // of the caches of the core it would have run on (round-robin over the cores:
-// L1 and, for lines absent there, L2; or the object caches). Stack refills
+// L1 and, for lines absent there, L2; or the object caches). The source reads
+// ahead of the rays in flight, so the reads are kept and applied when the
+// detailed ray after them is dispatched: the rays before them have started
+// (and mostly fetched what they need) by then, as in a full run. Stack refills
 // read the slot's spill area, which is not warmed. Nothing here runs in an
 // unsampled run.
 #pragma once
@@ -19,6 +22,24 @@ template <class Tester, class Memory>
 void Engine<Tester, Memory>::warm_read(uint32_t core, uint64_t addr, uint32_t bytes) {
   if (L1Cache* l1 = fast_forward_->l1[core]) return l1->warm(addr, bytes);
   if (ObjectCaches* o = fast_forward_->objects[core]) o->warm(addr);
+}
+
+template <class Tester, class Memory>
+void Engine<Tester, Memory>::apply_warm(uint64_t index) {
+  FastForward& ff = *fast_forward_;
+  while (ff.applied_runs < ff.runs.size() && ff.runs[ff.applied_runs].first <= index) {
+    for (; ff.applied_reads < ff.runs[ff.applied_runs].second; ++ff.applied_reads) {
+      const typename FastForward::Read& r = ff.reads[ff.applied_reads];
+      warm_read(r.core, r.addr, r.bytes);
+    }
+    ++ff.applied_runs;
+  }
+  if (ff.applied_runs == ff.runs.size()) {  // every run applied: the buffers start again (their capacity stays)
+    ff.reads.clear();
+    ff.runs.clear();
+    ff.applied_runs = ff.applied_reads = 0;
+    warm_pending_ = false;
+  }
 }
 
 template <class Tester, class Memory>
@@ -46,11 +67,11 @@ void Engine<Tester, Memory>::fast_forward(SampledFeed& feed) {
     for (bool searching = true; searching;) {
       switch (r.kind) {
         case StepRequest::Node:
-          if (warm) warm_read(core, map_.node(r.index), map_.node_bytes);
+          if (warm) ff.reads.push_back({map_.node(r.index), map_.node_bytes, core});
           r = st.node_step();
           break;
         case StepRequest::Leaf:
-          if (warm) warm_read(core, map_.triangle(r.index), r.count * BvhAddressMap::kTriangleBytes);
+          if (warm) ff.reads.push_back({map_.triangle(r.index), r.count * BvhAddressMap::kTriangleBytes, core});
           for (uint32_t i = 0; i < r.count; ++i)
             if (st.triangle_step(r.index + i).stop) break;
           r = st.leaf_done();
@@ -61,6 +82,12 @@ void Engine<Tester, Memory>::fast_forward(SampledFeed& feed) {
     }
     const RayOutcome out = replayer_.conclude(tr, er, st.hit(), st.rejected());
     feed.fast_forwarded(tr, out, last_handled_);
+  }
+  // The reads wait for the dispatch of the detailed ray after them: the one
+  // the source is reading now, at its next position.
+  if (warm && ff.reads.size() > (ff.runs.empty() ? 0 : ff.runs.back().second)) {
+    ff.runs.emplace_back(source_.rays_read(), ff.reads.size());
+    warm_pending_ = true;
   }
 }
 
