@@ -1,8 +1,8 @@
 // Sampled cycle-level simulation (hw/sampling/, docs/sampling.md): the
 // estimator's arithmetic by hand; with every unit measured the sampled run is
 // the full run; a sampled run's answers are the full run's, ray by ray; the
-// full run's cycles lie inside the interval on the bundled trace and on a
-// generated 92,488-ray path trace; and warming the caches while
+// full run's cycles lie inside the interval on two generated path traces
+// (92,488 rays over the bunny, 81,968 over Wuson), both presets; and warming the caches while
 // fast-forwarding brings the first measured unit's L2 hit rate and cycles to
 // the full run's, where without it the unit starts cold.
 #include <catch2/catch.hpp>
