@@ -119,15 +119,32 @@ CycleRunResult run_sampled_cycle_replay(const RayFeed& feed, const Scene& scene,
       std::isfinite(cpr.half_width) ? interval_json(std::max(0.0, cpr.low()), cpr.high()) : nlohmann::json();
   est["rays_per_cycle"] = rpc;
   iv["rays_per_cycle"] = std::isfinite(cpr.half_width) ? interval_json(rpc_lo, rpc_hi) : nlohmann::json();
-  for (const auto& [name, m] : {std::pair<const char*, const std::vector<UnitMeasure>*>{"l1_hit_rate", &l1},
-                                {"l2_hit_rate", &l2}}) {
-    double accesses = 0;
-    for (const UnitMeasure& u : *m) accesses += u.x;
-    if (accesses == 0) continue;  // no built-in cache
-    const RatioEstimate e = ratio_estimate(*m, conf, 0);
-    est[name] = e.ratio;
-    iv[name] = std::isfinite(e.half_width) ? interval_json(e.low(), e.high()) : nlohmann::json();
-    rel[name] = finite(e.relative());
+  // Hit rates over the trace: the strata's hits and accesses, exact, and the
+  // body's, its accesses per ray times its rays and the units' hit rate; the
+  // interval from the body hit rate's (the body's accesses taken as exact).
+  double rays_measured = 0;
+  for (const UnitMeasure& u : cycles) rays_measured += u.x;
+  for (const bool l1_level : {true, false}) {
+    const std::vector<UnitMeasure>& m = l1_level ? l1 : l2;
+    const char* name = l1_level ? "l1_hit_rate" : "l2_hit_rate";
+    double strata_hits = 0, strata_accesses = 0, accesses = 0;
+    for (const UnitMeasure& u : m) accesses += u.x;
+    for (const MeasuredUnit::Stratum which : {MeasuredUnit::Stratum::Head, MeasuredUnit::Stratum::Tail})
+      if (const MeasuredUnit* u = sampled.stratum(which)) {
+        strata_hits += static_cast<double>(l1_level ? u->end.l1_hits - u->start.l1_hits : u->end.l2_hits - u->start.l2_hits);
+        strata_accesses += static_cast<double>(l1_level ? u->end.l1_accesses - u->start.l1_accesses
+                                                        : u->end.l2_accesses - u->start.l2_accesses);
+      }
+    if (accesses == 0 && strata_accesses == 0) continue;  // no built-in cache
+    const RatioEstimate e = ratio_estimate(m, conf, 0);
+    const double body_accesses = rays_measured > 0 && body > 0 ? accesses / rays_measured * body : 0;
+    const double all = strata_accesses + body_accesses;
+    auto rate = [&](double body_rate) { return (strata_hits + body_accesses * body_rate) / all; };
+    est[name] = rate(e.ratio);
+    const bool known = std::isfinite(e.half_width) || body_accesses == 0;
+    const double half = body_accesses > 0 ? e.half_width : 0;
+    iv[name] = known ? interval_json(rate(e.ratio - half), rate(e.ratio + half)) : nlohmann::json();
+    rel[name] = known ? finite((rate(e.ratio + half) - rate(e.ratio)) / rate(e.ratio)) : nlohmann::json();
   }
   s["estimates"] = est;
   s["intervals"] = iv;
