@@ -80,7 +80,7 @@ CycleRunResult run_sampled_cycle_replay(const RayFeed& feed, const Scene& scene,
   hw["rays_per_cycle"] = rpc;
   hw["rays_per_s"] = rpc * cfg.clock_mhz * 1e6;
   nlohmann::json s;
-  s["estimated"] = {"cycles", "rays", "rays_per_cycle", "rays_per_s"};
+  s["estimated"] = {"cycles", "rays_per_cycle", "rays_per_s"};
   s["note"] =
       "hw.cycles, hw.rays_per_cycle and hw.rays_per_s are estimates for the whole trace (hw.rays is exact); every "
       "other hw figure describes only the rays simulated in detail (hw.sampling.detailed)";
