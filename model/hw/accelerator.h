@@ -175,6 +175,18 @@ class Accelerator final : private AcceleratorChecks, public sc_core::sc_module, 
   nlohmann::json emission_json() const;
   std::string hw_table();
   FunctionalReplayer& replayer() { return replayer_; }
+  /// Sampled simulation (hw/sampling/sampled_feed.h): the built-in ray source
+  /// treats a parent it never read as fast-forwarded (false: a replaced
+  /// source, which cannot); before the run.
+  bool set_parents_fast_forwarded(bool on) {
+    if (source_) source_->set_parents_fast_forwarded(on);
+    return source_ != nullptr;
+  }
+  /// The built-in ray source, or null when replaced.
+  const RaySource* ray_source() const { return source_.get(); }
+  /// Fast-forwards the rays `feed` gives until its next detailed ray
+  /// (CycleEngine::fast_forward); during the run, from the feed.
+  void fast_forward(SampledFeed& feed) { engine_->fast_forward(feed); }
   RayTestCore& core(size_t i) { return cores_[i]; }
   size_t cores() const { return cores_.size(); }
   IdealMemory* ideal_memory() { return ideal_.get(); }  ///< null with the caches

@@ -8,6 +8,7 @@
 #include "hw/observe/hw_energy.h"
 #include "hw/observe/timeline_recorder.h"
 #include "hw/observe/vcd_recorder.h"
+#include "hw/sampling/sampled_feed.h"
 #include "hw/simulation_context.h"
 #include "replay/ray_conservation.h"
 
@@ -87,6 +88,16 @@ CycleRunResult run_accelerator(const RunInput& input, const Scene& scene, const 
   std::optional<CountingShader> counted;
   if (input.shader) {
     acc->set_shader(counted.emplace(*input.shader, fed));
+  } else if (options.sampled) {
+    SampledFeed& sampled = *options.sampled;
+    if (!acc->set_parents_fast_forwarded(true))
+      throw std::invalid_argument("sampling: a replaced ray source cannot take fast-forwarded parents");
+    sampled.attach(*acc);
+    acc->set_feed([&sampled, &fed](TraceRay& tr) {
+      const bool got = sampled.next_detailed(tr);
+      fed += got ? 1 : 0;
+      return got;
+    });
   } else {
     acc->set_feed([&feed = *input.feed, &fed](TraceRay& tr) {
       const bool got = feed(tr);
@@ -96,7 +107,11 @@ CycleRunResult run_accelerator(const RunInput& input, const Scene& scene, const 
   }
   acc->set_locator(options.locator);
   acc->set_ray_times(options.ray_times);
-  acc->set_result_callback(sink);
+  if (options.sampled)
+    acc->set_result_callback([&sampled = *options.sampled](const TraceRay& tr, const RayOutcome& out, uint64_t cycle,
+                                                           uint64_t index) { sampled.detailed_done(tr, out, cycle, index); });
+  else
+    acc->set_result_callback(sink);
   acc->set_track_parents(options.track_parents);
   acc->set_stop_flag(options.stop);
   acc->set_progress(options.progress);
@@ -108,6 +123,7 @@ CycleRunResult run_accelerator(const RunInput& input, const Scene& scene, const 
   r.stats.mode = "cycle";
   r.stats.partial = acc->partial();
   r.stats.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (options.sampled) fed += options.sampled->fast_forwarded();  // answered on the way, counted as done
   // Rays in = rays out; a stopped run drops the rays it had read and not finished.
   const uint64_t done = r.stats.total().rays;
   if (!r.stats.partial) check_ray_conservation("cycle-level replay", fed, done);

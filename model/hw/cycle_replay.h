@@ -31,6 +31,8 @@ struct TraceWindow {
   std::string scope;        ///< the instances kept, a TraceScope (hw/observe/trace_scope.h; empty: all)
 };
 
+class SampledFeed;
+
 struct CycleRunOptions {
   const std::atomic<bool>* stop = nullptr;  ///< set (e.g. by SIGINT) to end the run early
   /// Called about every quarter second of wall time with the scheduler (e.g. a progress bar).
@@ -46,6 +48,9 @@ struct CycleRunOptions {
   AcceleratorUnits units;     ///< replaced units (none by default)
   /// Prices hw.energy and hw.area (null: the shipped default, default_tech_path()).
   const TechFile* tech = nullptr;
+  /// A sampled run (hw/sampling/sampled_replay.h sets it; null: every ray in
+  /// detail): the rays come from it, not from the feed, and the results go to it.
+  SampledFeed* sampled = nullptr;
 };
 
 struct CycleRunResult {

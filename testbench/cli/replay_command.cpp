@@ -4,6 +4,7 @@
 
 #include <atomic>
 #include <csignal>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <memory>
@@ -13,6 +14,7 @@
 #include "hw/cycle_replay.h"
 #include "hw/observe/host_memory_estimate.h"
 #include "hw/observe/trace_scope.h"
+#include "hw/sampling/sampled_replay.h"
 #include "hw/sink/trace_order_buffer.h"
 #include "io/atomic_output_file.h"
 #include "io/output_paths.h"
@@ -74,7 +76,29 @@ struct ReplayArgs {
   MethodOptions method;
   int threads = 1;             // --threads (every core by default)
   bool threads_given = false;  // --threads on the command line
+  // Sampled cycle-level simulation (docs/sampling.md).
+  bool sample = false;
+  hw::SamplingConfig sampling;
+  std::string sample_error;        // --sample-error: "1%" or 0.01 (empty: no stopping rule)
+  bool sample_options_given = false;
+  bool sample_no_warm = false;
 };
+
+/// --sample-error's value: a percentage ("1%") or a fraction ("0.01").
+double parse_sample_error(const std::string& text) {
+  std::string t = text;
+  double scale = 1;
+  if (!t.empty() && t.back() == '%') t.pop_back(), scale = 0.01;
+  try {
+    size_t used = 0;
+    const double v = std::stod(t, &used);
+    if (used != t.size() || !(v > 0)) throw std::invalid_argument("");
+    return v * scale;
+  } catch (const std::exception&) {
+    throw UsageError(fmt::format("option '--sample-error': '{}' is not a positive fraction or percentage (e.g. 1%)",
+                                 text));
+  }
+}
 
 /// One line of the ray log.
 std::string ray_log_line(const hw::RayTimes& t) {
@@ -127,8 +151,25 @@ ReplayStats run_cycle_mode(const ReplayArgs& a, const ReplayOptions& opt, const 
     run.ray_times = [&log](const hw::RayTimes& t) { log->put(t.trace_index, ray_log_line(t)); };
   }
   hw::CycleRunResult r = replay_at_trace_ray(source, [&] {
-    return hw::run_cycle_replay([&source](TraceRay& tr) { return source.next(tr); }, sb.scene, sb.bvh, opt, cfg,
-                                hits ? sink : hw::RayResultSink{}, run);
+    const hw::RayFeed feed = [&source](TraceRay& tr) { return source.next(tr); };
+    if (a.sample) {
+      hw::SamplingConfig sampling = a.sampling;
+      if (!a.sample_error.empty()) sampling.error = parse_sample_error(a.sample_error);
+      sampling.warm = !a.sample_no_warm;
+      // The tail stratum needs the trace's length beforehand: read from a file, unknown from a pipe.
+      std::error_code ec;
+      if (std::filesystem::is_regular_file(a.trace, ec)) sampling.total = count_trace_rays(a.trace);
+      try {
+        hw::check_sampling_config(sampling);
+      } catch (const std::invalid_argument& e) {
+        const std::string what = e.what();  // "--sample-unit: must be >= 1"
+        const size_t colon = what.find(':');
+        throw UsageError(fmt::format("option '{}'{}", what.substr(0, colon), what.substr(colon)));
+      }
+      return hw::run_sampled_cycle_replay(feed, sb.scene, sb.bvh, opt, cfg, hits ? sink : hw::RayResultSink{}, run,
+                                          sampling);
+    }
+    return hw::run_cycle_replay(feed, sb.scene, sb.bvh, opt, cfg, hits ? sink : hw::RayResultSink{}, run);
   });
   if (ordered) ordered->flush();  // a stopped run: the finished rays after the first dropped one
   if (log) {
@@ -157,6 +198,16 @@ void check_mode_options(const ReplayArgs& a) {
         "options '--preset', '--vcd', '--vcd-start', '--vcd-cycles', '--timeline', '--timeline-start', "
         "'--timeline-cycles', '--trace-scope', '--deps', '--missing-parents', '--ray-log', '--interval-stats', "
         "'--interval', '--warmup-rays' and '--warmup-cycles' need '--mode cycle'");
+  if (a.sample_options_given && !a.sample)
+    throw UsageError("options '--sample-unit', '--sample-interval', '--sample-warmup', '--sample-head', "
+                     "'--sample-tail', '--sample-offset', "
+                     "'--sample-confidence', '--sample-error', '--sample-min-units' and '--sample-no-warm' need "
+                     "'--sample'");
+  if (a.sample && a.mode != "cycle") throw UsageError("option '--sample' needs '--mode cycle'");
+  if (a.sample && (!a.vcd.empty() || !a.timeline.empty() || !a.ray_log.empty() || !a.interval_stats.empty() ||
+                   a.warmup_rays || a.warmup_cycles))
+    throw UsageError("option '--sample' does not go with '--vcd', '--timeline', '--ray-log', '--interval-stats', "
+                     "'--warmup-rays' or '--warmup-cycles'");
   if (a.mode == "cycle" && a.threads_given)
     throw UsageError("option '--threads' is for the functional replay; the cycle-level model runs on one thread");
   check_threads_option(a.threads);
@@ -317,6 +368,39 @@ void add_replay_command(CLI::App& app) {
                   "[the config's hw.sim.warmup_rays, else none]");
   cmd->add_option("--warmup-cycles", args->warmup_cycles,
                   "cycle mode: hw.measured counts from cycle C on [the config's hw.sim.warmup_cycles, else none]");
+  CLI::Option* sample = cmd->add_flag(
+      "--sample", args->sample,
+      "cycle mode: sampled simulation (docs/sampling.md): measure one unit of rays in every --sample-interval, "
+      "fast-forward the rest functionally while warming the caches; hits and verdicts stay exact, cycles, rays/cycle "
+      "and hit rates are estimates with confidence intervals (hw.sampling)");
+  std::vector<CLI::Option*> sample_options = {
+      cmd->add_option("--sample-unit", args->sampling.unit, "with --sample: rays per measurement unit")
+          ->capture_default_str(),
+      cmd->add_option("--sample-interval", args->sampling.interval,
+                      "with --sample: one unit measured every K units (1: every unit)")
+          ->capture_default_str(),
+      cmd->add_option("--sample-warmup", args->sampling.warmup,
+                      "with --sample: rays simulated in detail, unmeasured, before each measured unit")
+          ->capture_default_str(),
+      cmd->add_option("--sample-head", args->sampling.head,
+                      "with --sample: the trace's first rays, simulated in detail and measured whole")
+          ->capture_default_str(),
+      cmd->add_option("--sample-tail", args->sampling.tail,
+                      "with --sample: its last rays, the same (a trace read from a pipe has none)")
+          ->capture_default_str(),
+      cmd->add_option("--sample-offset", args->sampling.offset,
+                      "with --sample: which unit of each interval is measured, 0 .. K-1 [K/2]"),
+      cmd->add_option("--sample-confidence", args->sampling.confidence,
+                      "with --sample: confidence of the intervals")
+          ->capture_default_str(),
+      cmd->add_option("--sample-error", args->sample_error,
+                      "with --sample: stop measuring once the cycles' interval half-width is within this of the "
+                      "estimate (e.g. 1%), else measure to the trace's end [none]"),
+      cmd->add_option("--sample-min-units", args->sampling.min_units,
+                      "with --sample-error: units measured before the stopping rule may act")
+          ->capture_default_str(),
+      cmd->add_flag("--sample-no-warm", args->sample_no_warm,
+                    "with --sample: fast-forwarded rays leave the caches alone (to see what warming is worth)")};
   cmd->add_option("--stats", args->stats, "write the statistics JSON here");
   cmd->add_option("--hits", args->hits, "write one JSON line per ray here (after a provenance line)");
   cmd->add_flag("--quiet,-q", args->quiet, "print nothing on success (no progress, no SystemC info messages)");
@@ -324,7 +408,10 @@ void add_replay_command(CLI::App& app) {
   CLI::Option* threads =
       add_threads_option(*cmd, args->threads, "functional mode: threads that parse and replay the rays");
   add_method_options(*cmd, args->method, "none");
-  cmd->callback([args, start, cycles, vcd_start, vcd_cycles, threads] {
+  cmd->callback([args, start, cycles, vcd_start, vcd_cycles, threads, sample, sample_options] {
+    (void)sample;
+    args->sample_options_given = false;
+    for (const CLI::Option* o : sample_options) args->sample_options_given |= o->count() > 0;
     args->threads_given = threads->count() > 0;
     args->timeline_window_given = start->count() > 0 || cycles->count() > 0;
     args->vcd_window_given = vcd_start->count() > 0 || vcd_cycles->count() > 0;

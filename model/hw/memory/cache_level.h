@@ -69,6 +69,18 @@ class CacheLevel {
     }
     return miss(t, false);
   }
+  /// Functional warming (sampled simulation, hw/sampling/): the tag array
+  /// sees `line` as an access would, with no time: a present line becomes the
+  /// most recently used of its set (true); an absent one is allocated as the
+  /// most recently used, filled long ago, in the way of the least recently
+  /// used line not in flight (false). No counter, MSHR or cycle changes; an
+  /// unsampled run never calls it.
+  bool warm(uint64_t line) {
+    uint64_t fill;
+    if (tags_.touch(line, fill)) return true;
+    tags_.install(line, 0, kPendingCycle - 1);
+    return false;
+  }
   /// Requests for a line in flight wait for its miss (CacheConfig::merge_misses).
   bool merges_misses() const { return merge_; }
   /// Completes the miss of `line` that the last access() answered with Miss,

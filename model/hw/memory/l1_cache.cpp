@@ -45,6 +45,12 @@ nlohmann::json L1Cache::parameters() const {
           {"port_cycles", config_.port_cycles}};
 }
 
+void L1Cache::warm(uint64_t addr, uint32_t bytes) {
+  const uint64_t first = addr >> line_shift_, last = (addr + (bytes ? bytes : 1) - 1) >> line_shift_;
+  for (uint64_t line = first; line <= last; ++line)
+    if (!level_.warm(line) && l2_) l2_->warm_line(line);
+}
+
 uint64_t L1Cache::read_at(uint64_t addr, uint32_t bytes, uint64_t now, uint32_t slot) {
   switch (shape_) {  // the presets' associativities: loops unrolled, no switch per lookup
     case Shape::L1x4L2x8: return read_shaped<4, 8>(addr, bytes, now, slot);

@@ -87,6 +87,12 @@ class L1Cache final : public sc_core::sc_module, public MemoryReadIf, public Lin
     if (l2_tags_) l2_tags_->prefetch(line);
   }
 
+  /// Functional warming (sampled simulation, hw/sampling/): every line of a
+  /// read of `bytes` at `addr` is warmed in this L1 (CacheLevel::warm) and,
+  /// when it was absent and the built-in L2 is connected (connect_fast), in
+  /// the L2, as the read's misses would reach it. No time, no counter.
+  void warm(uint64_t addr, uint32_t bytes);
+
   const char* unit_kind() const override { return "L1Cache"; }
   nlohmann::json parameters() const override;
   LevelCounters counters() const { return level_.counters(); }

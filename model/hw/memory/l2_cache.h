@@ -77,6 +77,8 @@ class L2Cache final : public sc_core::sc_module,
   uint64_t read_line_inline(uint64_t line, uint64_t t, uint32_t core);
 
   const LruCache& tags() const { return level_.tags(); }
+  /// Functional warming of `line` (CacheLevel::warm; sampled simulation only).
+  bool warm_line(uint64_t line) { return level_.warm(line); }
   uint32_t ways() const { return config_.ways; }
 
   // ---- loosely timed, in time order ----

@@ -55,6 +55,22 @@ ObjectCaches::Cache* ObjectCaches::cache_of(uint64_t addr) {
   return nullptr;
 }
 
+void ObjectCaches::warm(uint64_t addr) {
+  Cache* c = cache_of(addr);
+  if (!c || c->config.entries == 0) return;
+  const auto it = c->entries.find(addr);
+  if (it != c->entries.end()) {
+    c->order.splice(c->order.begin(), c->order, it->second);
+    return;
+  }
+  if (c->entries.size() >= c->config.entries) {
+    c->entries.erase(c->order.back());
+    c->order.pop_back();
+  }
+  c->order.push_front(addr);
+  c->entries.emplace(addr, c->order.begin());
+}
+
 uint64_t ObjectCaches::dram_read(uint32_t bytes, uint64_t at, uint64_t now) {
   ++dram_reads_;
   dram_bytes_ += bytes;

@@ -66,6 +66,11 @@ class ObjectCaches final : public sc_core::sc_module, public MemoryReadIf, publi
 
   uint64_t read(uint64_t addr, uint32_t bytes, uint64_t now, uint32_t slot) override;
 
+  /// Functional warming (sampled simulation, hw/sampling/): the object a read
+  /// of `addr` looks up goes to the front of its cache's LRU order, entering
+  /// it (and evicting the least recently used when full) if absent, as its
+  /// arrival would. No time, no counter; spill reads are uncached and ignored.
+  void warm(uint64_t addr);
   const char* unit_kind() const override { return "ObjectCaches"; }
   nlohmann::json parameters() const override;
   const ObjectCacheCounters& counters(ObjectCachesConfig::Kind k) const { return caches_[k].counters; }

@@ -9,6 +9,7 @@
 #include "hw/scheduler/engine.h"
 #include "hw/scheduler/engine_dispatch.h"
 #include "hw/scheduler/engine_steps.h"
+#include "hw/scheduler/engine_fast_forward.h"
 
 namespace vbsim::hw {
 

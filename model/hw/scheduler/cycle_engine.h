@@ -47,6 +47,7 @@ class RaySource;
 class RaySourceIf;
 class RayTestCore;
 class ResultSink;
+class SampledFeed;
 
 class CycleEngine {
  public:
@@ -76,6 +77,13 @@ class CycleEngine {
   virtual uint64_t waiting_for_memory() const = 0;
   /// The pending read of slot `slot` has its data at `ready` (>= the cycle being handled).
   virtual void resume(uint32_t slot, uint64_t ready) = 0;
+  /// Sampled simulation (hw/sampling/sampled_feed.h): takes the rays
+  /// `feed.next_fast_forward` gives, each through the functional datapath
+  /// (emission, the search a slot's BvhStepper makes, conclusion) with no
+  /// simulated time, the reads of its traversal warming its core's caches'
+  /// tags (cores taken round-robin; feed.warm()), and reports each to
+  /// `feed.fast_forwarded`. One call per run of fast-forwarded rays.
+  virtual void fast_forward(SampledFeed& feed) = 0;
   /// Every busy slot's state, for the report of a run that stopped making progress.
   virtual std::string slot_report(size_t max_slots) const = 0;
 };

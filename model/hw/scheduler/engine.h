@@ -19,9 +19,11 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include <fmt/format.h>
@@ -32,6 +34,7 @@
 #include "hw/memory/bvh_address_map.h"
 #include "hw/memory/ideal_memory.h"
 #include "hw/memory/l1_cache.h"
+#include "hw/memory/object_caches.h"
 #include "hw/scheduler/cycle_engine.h"
 #include "hw/scheduler/engine_slot.h"
 #include "hw/scheduler/engine_tracer.h"
@@ -173,6 +176,7 @@ class Engine final : public CycleEngine, private SourceHost {
     events_.schedule(ready, resumed_id_ + slot);  // the step's second half runs at `ready`
   }
   std::string slot_report(size_t max_slots) const override;
+  void fast_forward(SampledFeed& feed) override;  // hw/scheduler/engine_fast_forward.h
 
  private:
   using Slot = EngineSlot<Tester>;
@@ -344,6 +348,31 @@ class Engine final : public CycleEngine, private SourceHost {
   MemoryClock* memory_clock_;
   std::function<void(uint64_t)> memory_step_;
   EventWheel events_{resumed_id_ + source_id_};
+  // Sampled simulation (engine_fast_forward.h): the fast-forwarded rays'
+  // search, and what their reads warm per core (null where the core's memory
+  // is neither a built-in L1 nor object caches: not warmed).
+  struct FastForward {
+    explicit FastForward(const Bvh& bvh, const CandidateFilter& filter, int depth) : stepper(bvh, filter, depth) {}
+    BvhStepper<Tester> stepper;
+    std::vector<L1Cache*> l1;
+    std::vector<ObjectCaches*> objects;
+    uint32_t next_core = 0;
+    /// The reads of fast-forwarded rays, kept until the detailed ray after
+    /// them is dispatched (the source reads ahead of the rays in flight).
+    struct Read {
+      uint64_t addr;
+      uint32_t bytes, core;
+    };
+    std::vector<Read> reads;
+    /// Runs of `reads`: (source position of the detailed ray after them, end in `reads`).
+    std::vector<std::pair<uint64_t, size_t>> runs;
+    size_t applied_runs = 0, applied_reads = 0;
+  };
+  std::unique_ptr<FastForward> fast_forward_;  // made at the first fast_forward()
+  bool warm_pending_ = false;                  // fast-forwarded reads wait for a dispatch
+  void warm_read(uint32_t core, uint64_t addr, uint32_t bytes);
+  /// Warms the caches with the fast-forwarded reads that come before the ray at source position `index`.
+  void apply_warm(uint64_t index);
   std::vector<Slot> slots_;
   std::vector<UnitPipelines> controllers_;  ///< per core (hw.controller; empty: none)
   bool stopped_ = false;

@@ -37,6 +37,7 @@ inline void Engine<Tester, Memory>::dispatch(uint32_t core_index, const SourceRa
   --free_count_[core_index];
   ++in_flight_;
   Slot& s = slots_[id];
+  if (__builtin_expect(warm_pending_, 0)) apply_warm(ray.index);  // a sampled run's fast-forwarded reads before it
   s.tr = ray.tr;
   s.trace_index = ray.index;
   s.er = ray.er;

@@ -212,7 +212,8 @@ void RaySource::enter(uint64_t pos, uint64_t now) {
       uint64_t parent_pos = 0;
       const ParentAt where = find_parent(tr.parent, pos, parent_pos);
       if (where != ParentAt::Found) {
-        parent_not_found(tr, pos, where);
+        if (__builtin_expect(parents_fast_forwarded_on_, 0)) ++parents_fast_forwarded_;
+        else parent_not_found(tr, pos, where);
       } else if (const Finish& p = finish_at(parent_pos);
                  p.cycle == kUnfinished || p.cycle + shader_.latency_for(p.kind) > now) {
         return wait_for_parent(pos, parent_pos);

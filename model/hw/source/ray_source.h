@@ -91,6 +91,12 @@ class RaySource final : public sc_core::sc_module, public RaySourceIf, public St
   /// until a ray finishes, when the source asks again.
   void set_shader_feed(ShaderFeed feed) override { feed_ = std::move(feed); }
   void set_locator(RayLocator locate) { locate_ = std::move(locate); }
+  /// Sampled simulation (hw/sampling/sampled_feed.h): the feed leaves out the
+  /// fast-forwarded rays, so a child whose parent is not among the rays read
+  /// had it fast-forwarded: it is ready when it enters (its parent counts as
+  /// finished then), counted in parents_fast_forwarded(), never an error.
+  void set_parents_fast_forwarded(bool on) { parents_fast_forwarded_on_ = on; }
+  uint64_t parents_fast_forwarded() const { return parents_fast_forwarded_; }
 
   // ---- the scheduler's side ----
   /// Events of the source: two per lane (its occupancy's end, its pipe's next
@@ -227,6 +233,8 @@ class RaySource final : public sc_core::sc_module, public RaySourceIf, public St
   /// positions arrive.
   uint64_t parent_window_, history_capacity_;
   std::vector<Finish> finish_;
+  bool parents_fast_forwarded_on_ = false;
+  uint64_t parents_fast_forwarded_ = 0;
   bool independent_missing_ = false;  ///< missing_parents "independent"
   std::string first_not_found_;
   std::vector<SourceRay> staged_;     // records of rays read and not yet dispatched
