@@ -18,6 +18,8 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import suite_measure as measure  # noqa: E402
 
 ROW_FIELDS = ("method", "tester", "kind", "rays", "errors", "self_hit", "false_hit", "missed", "rate", "lower", "upper")
+# The kinds a captured trace holds (vbsim capture's linker names them), each scored apart for the `pathtracer` type.
+CAPTURED_KINDS = ("primary", "shadow", "diffuse", "reflect", "refract")
 
 
 def measure_cell(s, scene, rtype, trace, work):
@@ -34,6 +36,9 @@ def measure_cell(s, scene, rtype, trace, work):
             if "cycles_per_ray" in row:
                 m[preset] = {k: row[k] for k in ("cycles_per_ray", "energy_per_ray_pj", "chip_mm2")}
     res["methods"] = list(methods.values())
+    if rtype == "pathtracer":  # a whole renderer's rays: each kind's errors apart (the same on every preset)
+        res["by_kind"] = [{k: row[k] for k in ROW_FIELDS} for kind_name in CAPTURED_KINDS
+                          for row in measure.score_rows(table, kind_name)]
     if not s["no_bench"]:
         for mode in ("functional", "cycle"):
             res["runs"][f"bench-{mode}"] = measure.bench(

@@ -130,6 +130,30 @@ def _chart(results, settings, path, prov):
     return True
 
 
+def _by_kind_section(results):
+    """The `pathtracer` type split by the kinds its capture gave its rays: per
+    scene, each method's errors per million on each kind's rays."""
+    if not results:
+        return []
+    L = ["", "## The `pathtracer` rays by kind", "",
+         "Embree's path tracer captured: its rays split by the kind `vbsim capture` gave each (docs/capture.md, "
+         "\"Parent links and kinds\"): camera rays, shadow rays (occlusion queries toward the light), and the "
+         "bounces by the direction they leave in. Errors per million with 95% Wilson intervals, rays in brackets."]
+    for r in results:
+        kinds = list(dict.fromkeys(m["kind"] for m in r["by_kind"]))
+        count = {k: next(m["rays"] for m in r["by_kind"] if m["kind"] == k) for k in kinds}
+        L += ["", f"### {r['scene']}", "", "| method | tester | " +
+              " | ".join(f"{k} ({count[k]:,})" for k in kinds) + " |", "|---|---|" + "---:|" * len(kinds)]
+        for method, tester in dict.fromkeys((m["method"], m["tester"]) for m in r["by_kind"]):
+            cells = []
+            for k in kinds:
+                m = next((m for m in r["by_kind"] if (m["method"], m["tester"], m["kind"]) == (method, tester, k)),
+                         None)
+                cells.append(_per_million(m) if m else "-")
+            L.append(f"| `{method}` | {tester} | " + " | ".join(cells) + " |")
+    return L
+
+
 def _page(path, settings, doc, speeds, presets, prov, chart):
     stem = os.path.splitext(os.path.basename(path))[0]
     s = settings
@@ -208,6 +232,7 @@ def _page(path, settings, doc, speeds, presets, prov, chart):
                 m = next((m for m in r["methods"] if (m["method"], m["tester"]) == (method, tester)), None)
                 cells.append(_per_million(m) if m else "-")
             L.append(f"| `{method}` | {tester} | " + " | ".join(cells) + " |")
+    L += _by_kind_section([r for r in results if r.get("by_kind")])
     L += ["", provenance_comment(prov).rstrip("\n")]
     with open(path + ".partial", "w") as f:
         f.write("\n".join(L) + "\n")

@@ -108,6 +108,19 @@ class SuiteSmallTest(unittest.TestCase):
             self.assertTrue(any(x.get("parent", -1) >= 0 for x in rays), r["scene"])
             self.assertTrue(any(x.get("kind") == "shadow" for x in rays), r["scene"])
             self.assertTrue(all("expect" in x for x in rays), r["scene"])  # through the oracle
+            # Scored by kind as well: the kinds' rays add up to the trace's, each method's rows to its errors.
+            kinds = {k: sum(1 for x in rays if x.get("kind", "primary") == k) for k in
+                     ("primary", "shadow", "diffuse", "reflect", "refract")}
+            for m in r["methods"]:
+                split = [b for b in r["by_kind"] if (b["method"], b["tester"]) == (m["method"], m["tester"])]
+                self.assertGreaterEqual(len(split), 2, (r["scene"], m["method"]))  # camera rays and shadow rays at least
+                for b in split:  # scored rays of each kind: all of the trace's but any marked incomplete
+                    self.assertTrue(0 < b["rays"] <= kinds[b["kind"]], (r["scene"], m["method"], b["kind"]))
+                secondary = [b for b in split if b["kind"] != "primary"]
+                self.assertEqual(sum(b["errors"] for b in secondary), m["errors"], (r["scene"], m["method"]))
+                self.assertEqual(sum(b["rays"] for b in secondary), m["rays"], (r["scene"], m["method"]))
+            with open(self.page) as f:
+                self.assertIn(f"### {r['scene']}", f.read().split("## The `pathtracer` rays by kind")[1])
 
     def test_no_method_on_shadow_rays_shows_acne(self):
         # Unprotected shadow rays from the hit points re-hit their own surfaces somewhere.
