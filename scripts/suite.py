@@ -90,7 +90,6 @@ def make_type_traces(a, entry, meta, work):
     """Runs the sources the wanted types need, splits them, fills in the exact
     answers; returns {type: {"trace", "rays", "source_rays", "source"}} and the
     source runs' figures."""
-    diag = sum((h - l) ** 2 for l, h in zip(*meta["bounds"])) ** 0.5
     commands = rays.source_commands(a.vbsim, meta["ply"], scenes.point_light(meta), a, work,
                                     scenes.pathtracer_camera(meta))
     needed = sorted({rays.SOURCE_OF[t] for t in a.types})
@@ -107,7 +106,7 @@ def make_type_traces(a, entry, meta, work):
         if info is None:
             log(f"suite: {entry['name']}: {src} source")
             info = measure.run(commands[src], os.path.join(work, src + ".log"))
-            split = rays.split(src, rays.source_trace(src, work), wanted, work, a.ao_radius * diag, a.max_rays)
+            split = rays.split(src, rays.source_trace(src, work), wanted, work, a.max_rays)
             info["types"] = {}
             for t, (raw, total) in split.items():
                 final = os.path.join(work, t + ".jsonl")

@@ -1,13 +1,15 @@
 """The workload suite's ray types, made with vbsim's own commands and split into
 one trace per type (docs/suite.md, "Ray types").
 
-Four sources per scene; the first three are reference runs (children from the
+Five sources per scene; the first four are reference runs (children from the
 exact answers, so the rays do not depend on a method):
 - `vbsim render --integrator mirror`: primary rays, shadow rays toward the
   point light, mirror (reflect) rays;
 - `vbsim render --integrator path --bounces 3`: diffuse rays by bounce (1, 2,
-  3: how many diffuse rays lie between the ray and its camera ray, plus one),
-  and the ambient-occlusion rays derived from the first bounce (below);
+  3: how many diffuse rays lie between the ray and its camera ray, plus one);
+- `vbsim render --integrator ao`: ambient-occlusion rays, `--spp` occlusion
+  queries (kind shadow) at each camera hit, cosine-distributed about the
+  shading normal, `ao_radius` times the scene's bounding-box diagonal long;
 - `vbsim gen paths --set depth=3`: glass (refract) rays of its camera paths
   (ior 1.5; the renderer has no glass material);
 - `vbsim capture --strip-offsets -- pathtracer`: Embree's own path tracer
@@ -21,19 +23,14 @@ replay then takes each ray's intended origin at `parent_uv` on `parent_prim`
 (docs/trace-format.md, "The exact answer"), and `vbsim oracle` fills in the
 exact answers for that definition. The cycle-level model sees the type's rays
 as independent queries, a wavefront renderer's queue of one kind.
-
-Ambient occlusion: each first diffuse bounce (a cosine-distributed direction
-about the shading normal of a camera hit) as an occlusion query (`kind`
-shadow) of length `ao_radius` times the scene's bounding-box diagonal.
 """
 import json
-import math
 import os
 
 from trace_writer import TraceWriter
 
 TYPES = ("primary", "shadow", "ao", "diffuse-1", "diffuse-2", "diffuse-3", "mirror", "glass", "pathtracer")
-SOURCE_OF = {"primary": "mirror", "shadow": "mirror", "mirror": "mirror", "ao": "path",
+SOURCE_OF = {"primary": "mirror", "shadow": "mirror", "mirror": "mirror", "ao": "ao",
              "diffuse-1": "path", "diffuse-2": "path", "diffuse-3": "path", "glass": "glass",
              "pathtracer": "pathtracer"}
 
@@ -48,6 +45,9 @@ def source_commands(vbsim, scene_ply, light, opts, out_dir, camera):
     return {
         "mirror": render + ["--integrator", "mirror", "-o", os.path.join(out_dir, "mirror.png"),
                             "--trace-out", os.path.join(out_dir, "mirror.jsonl")],
+        "ao": render + ["--integrator", "ao", "--spp", str(opts.spp), "--ao-radius", repr(float(opts.ao_radius)),
+                        "--seed", "1", "-o", os.path.join(out_dir, "ao.png"),
+                        "--trace-out", os.path.join(out_dir, "ao.jsonl")],
         "path": render + ["--integrator", "path", "--bounces", "3", "--spp", str(opts.spp), "--seed", "1",
                           "-o", os.path.join(out_dir, "path.png"), "--trace-out", os.path.join(out_dir, "path.jsonl")],
         "glass": [vbsim, "gen", "paths", "--rays", str(opts.glass_paths), "--seed", "1",
@@ -84,10 +84,12 @@ def _type_of(ray, source, depth):
         return {"primary": "primary", "shadow": "shadow", "reflect": "mirror"}.get(kind)
     if source == "path":
         return f"diffuse-{depth}" if kind == "diffuse" else None
+    if source == "ao":
+        return "ao" if kind == "shadow" else None
     return "glass" if kind == "refract" else None
 
 
-def split(source, trace, wanted, out_dir, ao_length, limit):
+def split(source, trace, wanted, out_dir, limit):
     """Writes OUT_DIR/TYPE.raw.jsonl for every type of `wanted` this source makes:
     its rays without parents and without `expect` (primary rays keep theirs),
     at most `limit` of them taken evenly over the trace. Returns {type: (path,
@@ -110,8 +112,6 @@ def split(source, trace, wanted, out_dir, ao_length, limit):
             t = _type_of(ray, source, d)
             if t in picked:
                 picked[t].append(ray)
-            if source == "path" and t == "diffuse-1" and "ao" in picked:
-                picked["ao"].append(_ao_ray(ray, ao_length))
     out = {}
     for t, rays in picked.items():
         if t not in SOURCE_OF or SOURCE_OF[t] != source:
@@ -158,12 +158,3 @@ def _whole(trace, out_dir, limit):
             fields = {k: v for k, v in r.items() if k not in ("reference",)}
             w.ray(**fields)
     return {"pathtracer": (path, total)}
-
-
-def _ao_ray(ray, length):
-    r = dict(ray)
-    r["kind"] = "shadow"
-    norm = math.sqrt(sum(x * x for x in r["d"]))
-    r["tmax"] = length / norm
-    r.pop("expect", None)
-    return r

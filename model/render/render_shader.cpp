@@ -50,7 +50,8 @@ RenderShader::RenderShader(const Scene& scene, const Bvh& bvh, const RenderSetti
       camera_(settings.camera, scene.bounds, settings.width, settings.height),
       filler_(scene, bvh, parent_window),
       pixels_(static_cast<uint32_t>(settings.width) * static_cast<uint32_t>(settings.height)),
-      slots_(static_cast<uint32_t>(settings.max_bounces) + 2) {
+      slots_(static_cast<uint32_t>(settings.max_bounces) + 2),
+      ao_length_(settings.ao_radius * static_cast<float>(length(scene.bounds.hi - scene.bounds.lo))) {
   RenderResult& r = result_;
   r.width = settings.width;
   r.height = settings.height;
@@ -71,14 +72,15 @@ void RenderShader::make_primary() {
   TraceRay r;
   r.kind = RayKind::Primary;
   r.o = camera_.eye();
-  if (settings_.samples == 1) {
+  if (settings_.samples == 1 || settings_.integrator == RenderIntegrator::Ao) {
     r.d = camera_.direction(x, y);  // the pixel's centre
   } else {
     const RenderRandom rng(settings_.seed, pixel, sample);
     r.d = camera_.direction_at(float(x) + rng.uniform(0, 0), float(y) + rng.uniform(0, 1));
   }
   push_child(r, RayContext{pixel, sample, 0, Role::Primary, Vec3f{1, 1, 1}});
-  if (++next_sample_ == static_cast<uint32_t>(settings_.samples)) {
+  // ao: one camera ray a pixel; `samples` counts the occlusion rays of its hit.
+  if (settings_.integrator == RenderIntegrator::Ao || ++next_sample_ == static_cast<uint32_t>(settings_.samples)) {
     next_sample_ = 0;
     ++next_pixel_;
   }
@@ -130,6 +132,9 @@ void RenderShader::on_result(const TraceRay& ray, const RayOutcome& outcome, uin
         else p.lit[c.depth] = c.weight.x;
       }
       break;
+    case Role::Occlusion:
+      if (answer < 0) p.lit[0] += c.weight.x;
+      break;
     case Role::Bounce:
       if (answer >= 0) {
         p.bounce_hit = true;
@@ -139,7 +144,8 @@ void RenderShader::on_result(const TraceRay& ray, const RayOutcome& outcome, uin
       }
       break;
   }
-  if (--p.pending == 0 && p.primaries == static_cast<uint32_t>(settings_.samples)) {
+  if (--p.pending == 0 &&
+      p.primaries == (settings_.integrator == RenderIntegrator::Ao ? 1u : static_cast<uint32_t>(settings_.samples))) {
     finish_pixel(c.pixel, p);
     pixels_live_.erase(c.pixel);
   }
@@ -165,6 +171,8 @@ void RenderShader::shade_hit(const TraceRay& in, const Hit& h, const RayContext&
       ns = dot(n, ng_in) < 0.0f ? -n : n;  // the shading normal on the viewer's side
     }
   }
+
+  if (settings_.integrator == RenderIntegrator::Ao) return cast_occlusion(child, ns, at);
 
   // The hit's number along its path: 0 at the primary hit.
   const uint32_t depth = at.role == Role::Primary ? 0 : at.depth;
@@ -200,9 +208,23 @@ void RenderShader::shade_hit(const TraceRay& in, const Hit& h, const RayContext&
   push_child(bounce, RayContext{at.pixel, at.sample, 1, Role::Bounce, throughput});
 }
 
+void RenderShader::cast_occlusion(const TraceRay& child, Vec3f ns, const RayContext& at) {
+  const float weight = 1.0f / static_cast<float>(settings_.samples);
+  for (uint32_t k = 0; k < static_cast<uint32_t>(settings_.samples); ++k) {
+    TraceRay ray = child;
+    ray.kind = RayKind::Shadow;
+    ray.d = ao_length_ * RenderRandom(settings_.seed, at.pixel, k).cosine_direction(ns, 0);
+    ray.tmax = 1.0f;
+    if (ray.d == Vec3f{0, 0, 0} || !is_finite(ray.d)) continue;  // a zero-size scene: nothing to occlude
+    push_child(ray, RayContext{at.pixel, k, 0, Role::Occlusion, Vec3f{weight, 0, 0}});
+  }
+}
+
 void RenderShader::finish_pixel(uint32_t pixel, PixelState& p) {
   Vec3f colour = background_linear();
-  if (settings_.integrator == RenderIntegrator::Path) {
+  if (settings_.integrator == RenderIntegrator::Ao) {
+    if (result_.primary_prim[pixel] >= 0) colour = p.lit[0] * kAlbedo;
+  } else if (settings_.integrator == RenderIntegrator::Path) {
     Vec3f sum{0, 0, 0};
     for (uint32_t s = 0; s < static_cast<uint32_t>(settings_.samples); ++s)
       for (uint32_t slot = 0; slot < slots_; ++slot) sum = sum + term(p, s, slot);

@@ -42,7 +42,7 @@ class RenderShader final : public RayShader {
   uint64_t rays_cast() const { return next_id_; }
 
  private:
-  enum class Role : uint8_t { Primary, Shadow, Bounce };
+  enum class Role : uint8_t { Primary, Shadow, Bounce, Occlusion };
   /// What a ray in flight is for.
   struct RayContext {
     uint32_t pixel = 0;
@@ -61,12 +61,14 @@ class RenderShader final : public RayShader {
     uint32_t primaries = 0;  ///< primary rays made
     uint8_t marks = 0;
     bool bounced = false, bounce_hit = false;  ///< mirror: a bounce was cast, and it hit
-    float lit[2] = {0.0f, 0.0f};               ///< mirror: lambert x visible at the primary and the bounce hit
+    float lit[2] = {0.0f, 0.0f};               ///< mirror: lambert x visible at the primary and the bounce hit; ao: [0] the unoccluded fraction
     std::vector<Vec3f> terms;  ///< path: [sample][slot], slot d < slots-1: light at hit d, last: background
   };
 
   /// Makes the rays a hit spawns (`in` hit `h`, which is hit number `depth`).
   void shade_hit(const TraceRay& in, const Hit& h, const RayContext& at);
+  /// ao: the occlusion rays from the primary hit `child` (its origin and parent fields set).
+  void cast_occlusion(const TraceRay& child, Vec3f ns, const RayContext& at);
   void make_primary();
   void push_child(const TraceRay& ray, const RayContext& context);
   void finish_pixel(uint32_t pixel, PixelState& p);
@@ -78,6 +80,7 @@ class RenderShader final : public RayShader {
   ExpectationFiller filler_;
   uint32_t pixels_;
   uint32_t slots_;  ///< path: terms a sample keeps (max_bounces + 2)
+  float ao_length_;  ///< ao: an occlusion ray's length (ao_radius times the bounding-box diagonal)
   uint32_t next_pixel_ = 0, next_sample_ = 0;
   int64_t next_id_ = 0;
   std::deque<Pending> children_;

@@ -1,6 +1,7 @@
 #include "render/renderer.h"
 
 #include <chrono>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -13,11 +14,11 @@
 namespace vbsim {
 
 const char* render_integrator_name(RenderIntegrator i) {
-  return i == RenderIntegrator::Path ? "path" : "mirror";
+  return i == RenderIntegrator::Path ? "path" : i == RenderIntegrator::Ao ? "ao" : "mirror";
 }
 
 bool parse_render_integrator(const std::string& s, RenderIntegrator& out) {
-  for (const RenderIntegrator i : {RenderIntegrator::Mirror, RenderIntegrator::Path})
+  for (const RenderIntegrator i : {RenderIntegrator::Mirror, RenderIntegrator::Path, RenderIntegrator::Ao})
     if (s == render_integrator_name(i)) {
       out = i;
       return true;
@@ -33,6 +34,9 @@ void check_render_settings(const RenderSettings& s) {
         fmt::format("samples {}: the mirror integrator traces one ray a pixel (the path integrator takes more)", s.samples));
   if (s.samples < 1 || s.samples > kMaxRenderSamples)
     throw std::invalid_argument(fmt::format("samples {}: must be 1 to {}", s.samples, kMaxRenderSamples));
+  if (s.integrator == RenderIntegrator::Ao && !(s.ao_radius > 0.0f && std::isfinite(s.ao_radius)))
+    throw std::invalid_argument(fmt::format("ao radius {}: must be a positive finite fraction of the scene's "
+                                            "bounding-box diagonal", s.ao_radius));
   if (s.max_bounces < 0 || s.max_bounces > kMaxRenderBounces)
     throw std::invalid_argument(fmt::format("bounces {}: must be 0 to {}", s.max_bounces, kMaxRenderBounces));
 }

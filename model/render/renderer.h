@@ -17,6 +17,11 @@
 //   shadow ray at every hit (next-event estimation) and up to `max_bounces`
 //   cosine-sampled bounces; the random numbers are a hash of (seed, pixel,
 //   sample, bounce), so the image does not depend on the order rays finish.
+// - ao: ambient occlusion, one camera ray a pixel through its centre and, at
+//   its hit, `samples` occlusion queries (kind shadow, any hit) in
+//   cosine-distributed directions about the shading normal, each `ao_radius`
+//   times the scene's bounding-box diagonal long (d of that length, tmax 1).
+//   Colour: albedo * the fraction of them unoccluded; background on a miss.
 // Child rays start at the barycentric hit point (u, v of the method's hit) and
 // carry parent_t, parent_uv and parent_ns, exactly as a trace's child rays do.
 // With children_from_exact, the exact answer decides instead (the reference
@@ -38,8 +43,8 @@
 
 namespace vbsim {
 
-enum class RenderIntegrator { Mirror, Path };
-const char* render_integrator_name(RenderIntegrator i);  ///< "mirror", "path"
+enum class RenderIntegrator { Mirror, Path, Ao };
+const char* render_integrator_name(RenderIntegrator i);  ///< "mirror", "path", "ao"
 bool parse_render_integrator(const std::string& s, RenderIntegrator& out);
 
 /// Largest samples per pixel and bounces a path takes.
@@ -52,7 +57,9 @@ struct RenderSettings {
   CameraSpec camera;
   RenderLight light;
   RenderIntegrator integrator = RenderIntegrator::Mirror;
-  int samples = 1;      ///< paths a pixel (path: 1..kMaxRenderSamples; mirror: 1)
+  int samples = 1;      ///< paths a pixel (path: 1..kMaxRenderSamples; mirror: 1); ao: occlusion rays a hit
+  /// ao: an occlusion ray's length, times the scene's bounding-box diagonal (> 0, finite).
+  float ao_radius = 0.1f;
   int max_bounces = 2;  ///< diffuse bounces a path takes at most (path: 0..kMaxRenderBounces)
   uint64_t seed = 1;    ///< of the path tracer's random numbers
   /// Children (and shadow visibility) from the exact oracle's answers instead

@@ -48,6 +48,8 @@ struct RenderArgs {
   std::string preset, tech;  // cycle mode
   std::string integrator = "mirror";
   int samples = 1, bounces = 2;
+  float ao_radius = 0.1f;
+  bool ao_radius_given = false;
   uint64_t seed = 1;
   std::string trace_out;  // the rays cast, as a trace
   std::string children_from = "method";
@@ -86,8 +88,13 @@ void check_render_options(const RenderArgs& a, RenderSettings& rs) {
     throw UsageError("options '--preset' and '--tech' need '--mode cycle'");
   check_preset_name(a.preset);
   if (!parse_render_integrator(a.integrator, rs.integrator))
-    throw UsageError(fmt::format("option '--integrator': '{}' is not available; integrators: mirror, path",
+    throw UsageError(fmt::format("option '--integrator': '{}' is not available; integrators: mirror, path, ao",
                                  a.integrator));
+  if (rs.integrator != RenderIntegrator::Ao && a.ao_radius_given)
+    throw UsageError("option '--ao-radius' needs '--integrator ao'");
+  if (rs.integrator == RenderIntegrator::Ao && !(a.ao_radius > 0.0f && std::isfinite(a.ao_radius)))
+    throw UsageError(fmt::format("option '--ao-radius': {} is not a positive finite fraction of the scene's "
+                                 "bounding-box diagonal", a.ao_radius));
   if (rs.integrator == RenderIntegrator::Mirror && a.samples != 1)
     throw UsageError("option '--spp': the mirror integrator traces one ray a pixel (use '--integrator path')");
   if (a.samples < 1 || a.samples > kMaxRenderSamples)
@@ -98,6 +105,7 @@ void check_render_options(const RenderArgs& a, RenderSettings& rs) {
     throw UsageError(fmt::format("option '--children-from': '{}' is not method or exact", a.children_from));
   rs.children_from_exact = a.children_from == "exact";
   rs.samples = a.samples;
+  rs.ao_radius = a.ao_radius;
   rs.max_bounces = a.bounces;
   rs.seed = a.seed;
 }
@@ -221,6 +229,11 @@ int run_render(const RenderArgs& a) {
       config["bounces"] = rs.max_bounces;
       config["seed"] = rs.seed;
     }
+    if (rs.integrator == RenderIntegrator::Ao) {
+      config["samples"] = rs.samples;  // occlusion rays a hit
+      config["ao_radius"] = rs.ao_radius;
+      config["seed"] = rs.seed;
+    }
     if (a.mode == "cycle") config["hw"] = hw::hw_config_json(hw::for_tester(cfg, opt.tester));
     nlohmann::json j = r.stats.to_json(config);
     j["energy"] = operation_energy_json(tech, operation_energy(tech, opt.method, opt.tester, r.stats), rays);
@@ -269,12 +282,21 @@ void add_render_command(CLI::App& app) {
   cmd->add_option("--preset", args->preset, "cycle mode: hardware preset, small, large or rtcore [the config's, else small]");
   add_tech_option(*cmd, args->tech);
   cmd->add_option("--integrator", args->integrator,
-                  "mirror (a shadow ray and one mirror bounce a pixel) or path (diffuse path tracing)")
+                  "mirror (a shadow ray and one mirror bounce a pixel), path (diffuse path tracing) or ao "
+                  "(ambient occlusion: --spp occlusion rays at each camera hit)")
       ->capture_default_str();
-  cmd->add_option("--spp", args->samples, "path: samples (paths) a pixel, 1 to 4096")->capture_default_str();
+  cmd->add_option("--spp", args->samples, "path: samples (paths) a pixel; ao: occlusion rays a hit; 1 to 4096")
+      ->capture_default_str();
+  cmd->add_option_function<float>(
+         "--ao-radius",
+         [args](float r) {
+           args->ao_radius = r;
+           args->ao_radius_given = true;
+         },
+         "ao: an occlusion ray's length, times the scene's bounding-box diagonal [0.1]");
   cmd->add_option("--bounces", args->bounces, "path: diffuse bounces a path takes at most, 0 to 16")
       ->capture_default_str();
-  cmd->add_option("--seed", args->seed, "path: seed of the random numbers")->capture_default_str();
+  cmd->add_option("--seed", args->seed, "path, ao: seed of the random numbers")->capture_default_str();
   cmd->add_option("--children-from", args->children_from,
                   "method (the method's answers make the next rays: a closed loop) or exact (the exact answers "
                   "do: the reference renderer, the same rays for every method)")

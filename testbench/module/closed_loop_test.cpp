@@ -176,9 +176,9 @@ const BunnyScene& bunny() {
 TEST_CASE("the closed-loop render on the accelerator draws the untimed render's image", "[module][closed-loop][render]") {
   const SceneAndBvh& sb = bunny().sb;
   const std::string method = GENERATE("none", "validity-bit", "offset-normal");
-  const bool path = GENERATE(false, true);
-  INFO(method << (path ? " path x3" : " mirror"));
-  const RenderSettings rs = small_render(path ? RenderIntegrator::Path : RenderIntegrator::Mirror, path ? 3 : 1);
+  const RenderIntegrator integrator = GENERATE(RenderIntegrator::Mirror, RenderIntegrator::Path, RenderIntegrator::Ao);
+  INFO(method << " " << render_integrator_name(integrator));
+  const RenderSettings rs = small_render(integrator, integrator == RenderIntegrator::Mirror ? 1 : 3);
   const ReplayOptions opt = method_options(method);
   const RenderResult functional = render_scene(sb.scene, sb.bvh, opt, rs);
   const CycleRenderResult cycle = render_scene_cycle(sb.scene, sb.bvh, opt, rs, load_preset("small", "test"), {});

@@ -109,6 +109,22 @@ TEST_CASE("render errors name the option or the file", "[render][cli]") {
   r = run_vbsim("render " + scene + " -o " + (dir / "no_such_dir" / "x.png").string());
   CHECK(r.exit_code != 0);
   CHECK_THAT(r.output, Catch::Contains("no_such_dir"));
+  r = run_vbsim("render " + scene + out + " --ao-radius 0.2");  // the mirror integrator has no occlusion rays
+  CHECK(r.exit_code == 2);
+  CHECK_THAT(r.output, Catch::Contains("--ao-radius") && Catch::Contains("--integrator ao"));
+  for (const char* radius : {"0", "-1", "inf"}) {
+    r = run_vbsim("render " + scene + out + " --integrator ao --ao-radius " + radius);
+    CHECK(r.exit_code == 2);
+    CHECK_THAT(r.output, Catch::Contains("--ao-radius"));
+  }
+  r = run_vbsim("render " + scene + out + " --integrator ao --spp 4 --ao-radius 0.05 --stats " +
+                (dir / "ao.json").string() + " -q");
+  REQUIRE(r.exit_code == 0);
+  std::ifstream in(dir / "ao.json");
+  const nlohmann::json ao = nlohmann::json::parse(in);
+  CHECK(ao["config"]["integrator"] == "ao");
+  CHECK(ao["config"]["samples"] == 4);
+  CHECK(ao["by_kind"]["shadow"]["rays"].get<uint64_t>() == 4 * ao["by_kind"]["primary"]["hits"].get<uint64_t>());
 }
 
 TEST_CASE("render --mode cycle: the frame's hardware figures, and a closed-loop trace that replays to its cycles",

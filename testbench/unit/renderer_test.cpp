@@ -177,3 +177,58 @@ TEST_CASE("render refuses a zero image size", "[render]") {
   rs.width = 0;
   CHECK_THROWS_WITH(render_scene(f.scene, f.bvh, ReplayOptions{}, rs), Catch::Contains("image size"));
 }
+
+TEST_CASE("ambient occlusion: occlusion rays of the stated length about the normal, dark only under the occluder",
+          "[render][ao]") {
+  const Fixture f;
+  ReplayOptions opt;
+  std::string error;
+  REQUIRE(parse_method("validity-bit", opt.method, error));
+  RenderSettings rs;
+  rs.width = rs.height = 24;
+  rs.integrator = RenderIntegrator::Ao;
+  rs.samples = 16;
+  rs.children_from_exact = true;  // the exact answers decide: the picture is the scene's, not a method's
+  const float diagonal = length(f.scene.bounds.hi - f.scene.bounds.lo);
+  // The ground's up normal (+y side, where the camera is): Ng of triangle 0.
+  const Vec3f up = normalize(geometric_normal(f.scene.triangles[0]));
+  for (const float radius : {0.1f, 0.5f}) {
+    INFO("ao radius " << radius << " of the diagonal " << diagonal);
+    rs.ao_radius = radius;
+    std::vector<TraceRay> cast;
+    const RenderResult r = render_scene(f.scene, f.bvh, opt, rs, [&](const TraceRay& t) { cast.push_back(t); });
+    uint64_t primaries = 0, hits = 0, occlusion = 0;
+    for (const TraceRay& t : cast) {
+      if (t.kind == RayKind::Primary) {
+        ++primaries;
+        hits += t.expect_prim >= 0;
+        continue;
+      }
+      REQUIRE(t.kind == RayKind::Shadow);
+      ++occlusion;
+      CHECK(t.tmax == 1.0f);
+      CHECK(t.parent >= 0);
+      CHECK(std::abs(length(t.d) - radius * diagonal) <= 1e-5f * diagonal);
+      CHECK(dot(t.d, up) > 0.0f);  // every surface the camera sees faces up: the rays leave above it
+    }
+    CHECK(primaries == 24u * 24u);  // one camera ray a pixel
+    CHECK(occlusion == 16 * hits);
+    CHECK(r.stats.by_kind[static_cast<int>(RayKind::Shadow)].rays == occlusion);
+    // Each hit pixel is albedo times its unoccluded fraction: exactly albedo
+    // where nothing is within reach (the occluder is 0.8 above the ground).
+    const Rgb8 full = to_rgb8(kAlbedo);
+    int albedo = 0, darker = 0;
+    for (int p = 0; p < 24 * 24; ++p) {
+      if (r.primary_prim[p] < 0) continue;
+      const bool same = r.image[3 * p] == full[0] && r.image[3 * p + 1] == full[1] && r.image[3 * p + 2] == full[2];
+      albedo += same;
+      darker += !same && r.image[3 * p] < full[0];
+      if (r.primary_prim[p] >= 2) CHECK(same);  // the occluder's top: open sky above it
+    }
+    CHECK(albedo + darker == static_cast<int>(hits));
+    if (radius * diagonal < 0.8f) CHECK(darker == 0);
+    else CHECK(darker > 0);  // the ground beside and under the occluder's edge
+  }
+  rs.ao_radius = 0.0f;
+  CHECK_THROWS_WITH(render_scene(f.scene, f.bvh, opt, rs), Catch::Contains("ao radius"));
+}
