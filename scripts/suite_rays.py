@@ -11,7 +11,7 @@ exact answers, so the rays do not depend on a method):
   queries (kind shadow) at each camera hit, cosine-distributed about the
   shading normal, `ao_radius` times the scene's bounding-box diagonal long;
 - `vbsim gen paths --set depth=3`: glass (refract) rays of its camera paths
-  (ior 1.5; the renderer has no glass material);
+  (ior 1.5; gen paths' camera paths, not the renderer's glass integrator);
 - `vbsim capture --strip-offsets -- pathtracer`: Embree's own path tracer
   (embree-tools) on the scene, one thread: the `pathtracer` type is its whole
   trace, camera rays, shadow rays and bounces with their parents (another

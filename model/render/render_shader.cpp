@@ -1,5 +1,6 @@
 #include "render/render_shader.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -141,6 +142,8 @@ void RenderShader::on_result(const TraceRay& ray, const RayOutcome& outcome, uin
         shade_hit(ray, hit, c);
       } else if (path) {
         term(p, c.sample, slots_ - 1) = times(c.weight, background_linear());
+      } else if (settings_.integrator == RenderIntegrator::Glass) {
+        p.escaped = times(c.weight, background_linear());
       }
       break;
   }
@@ -173,6 +176,7 @@ void RenderShader::shade_hit(const TraceRay& in, const Hit& h, const RayContext&
   }
 
   if (settings_.integrator == RenderIntegrator::Ao) return cast_occlusion(child, ns, at);
+  if (settings_.integrator == RenderIntegrator::Glass) return cast_glass(child, dn, ng, ns, at);
 
   // The hit's number along its path: 0 at the primary hit.
   const uint32_t depth = at.role == Role::Primary ? 0 : at.depth;
@@ -220,9 +224,37 @@ void RenderShader::cast_occlusion(const TraceRay& child, Vec3f ns, const RayCont
   }
 }
 
+void RenderShader::cast_glass(const TraceRay& child, Vec3f dn, Vec3f ng, Vec3f ns, const RayContext& at) {
+  const uint32_t depth = at.role == Role::Primary ? 0 : at.depth;
+  if (depth >= static_cast<uint32_t>(settings_.max_bounces)) return;  // still inside: black
+  const bool entering = dot(dn, ng) < 0.0f;  // the front side, by the winding
+  const float eta = entering ? 1.0f / kGlassIor : kGlassIor;
+  const float cos_i = std::min(1.0f, std::max(0.0f, -dot(dn, ns)));
+  const float sin2_t = eta * eta * (1.0f - cos_i * cos_i);
+  const Vec3f throughput = at.role == Role::Primary ? Vec3f{1, 1, 1} : at.weight;
+  TraceRay ray = child;
+  Vec3f weight = throughput;
+  if (sin2_t >= 1.0f) {  // total internal reflection
+    ray.kind = RayKind::Reflect;
+    ray.d = dn + (2.0f * cos_i) * ns;
+  } else {
+    const float cos_t = std::sqrt(1.0f - sin2_t);
+    ray.kind = RayKind::Refract;
+    ray.d = eta * dn + (eta * cos_i - cos_t) * ns;
+    // Schlick's Fresnel reflectance, at the angle on the air side.
+    const float f0 = ((1.0f - kGlassIor) / (1.0f + kGlassIor)) * ((1.0f - kGlassIor) / (1.0f + kGlassIor));
+    const float c = 1.0f - (entering ? cos_i : cos_t);
+    weight = (1.0f - (f0 + (1.0f - f0) * c * c * c * c * c)) * throughput;
+  }
+  if (ray.d == Vec3f{0, 0, 0} || !is_finite(ray.d)) return;
+  push_child(ray, RayContext{at.pixel, at.sample, depth + 1, Role::Bounce, weight});
+}
+
 void RenderShader::finish_pixel(uint32_t pixel, PixelState& p) {
   Vec3f colour = background_linear();
-  if (settings_.integrator == RenderIntegrator::Ao) {
+  if (settings_.integrator == RenderIntegrator::Glass) {
+    if (result_.primary_prim[pixel] >= 0) colour = p.escaped;
+  } else if (settings_.integrator == RenderIntegrator::Ao) {
     if (result_.primary_prim[pixel] >= 0) colour = p.lit[0] * kAlbedo;
   } else if (settings_.integrator == RenderIntegrator::Path) {
     Vec3f sum{0, 0, 0};

@@ -62,6 +62,7 @@ class RenderShader final : public RayShader {
     uint8_t marks = 0;
     bool bounced = false, bounce_hit = false;  ///< mirror: a bounce was cast, and it hit
     float lit[2] = {0.0f, 0.0f};               ///< mirror: lambert x visible at the primary and the bounce hit; ao: [0] the unoccluded fraction
+    Vec3f escaped{0, 0, 0};                    ///< glass: the background its path escaped to, times its transmittance
     std::vector<Vec3f> terms;  ///< path: [sample][slot], slot d < slots-1: light at hit d, last: background
   };
 
@@ -69,6 +70,10 @@ class RenderShader final : public RayShader {
   void shade_hit(const TraceRay& in, const Hit& h, const RayContext& at);
   /// ao: the occlusion rays from the primary hit `child` (its origin and parent fields set).
   void cast_occlusion(const TraceRay& child, Vec3f ns, const RayContext& at);
+  /// glass: the refraction (or, past the critical angle, the reflection) of
+  /// `dn` at hit `child` on a surface whose geometric normal is `ng` and whose
+  /// shading normal, on the side the ray came from, is `ns`.
+  void cast_glass(const TraceRay& child, Vec3f dn, Vec3f ng, Vec3f ns, const RayContext& at);
   void make_primary();
   void push_child(const TraceRay& ray, const RayContext& context);
   void finish_pixel(uint32_t pixel, PixelState& p);

@@ -14,11 +14,17 @@
 namespace vbsim {
 
 const char* render_integrator_name(RenderIntegrator i) {
-  return i == RenderIntegrator::Path ? "path" : i == RenderIntegrator::Ao ? "ao" : "mirror";
+  switch (i) {
+    case RenderIntegrator::Path: return "path";
+    case RenderIntegrator::Ao: return "ao";
+    case RenderIntegrator::Glass: return "glass";
+    default: return "mirror";
+  }
 }
 
 bool parse_render_integrator(const std::string& s, RenderIntegrator& out) {
-  for (const RenderIntegrator i : {RenderIntegrator::Mirror, RenderIntegrator::Path, RenderIntegrator::Ao})
+  for (const RenderIntegrator i :
+       {RenderIntegrator::Mirror, RenderIntegrator::Path, RenderIntegrator::Ao, RenderIntegrator::Glass})
     if (s == render_integrator_name(i)) {
       out = i;
       return true;
@@ -29,9 +35,10 @@ bool parse_render_integrator(const std::string& s, RenderIntegrator& out) {
 void check_render_settings(const RenderSettings& s) {
   if (s.width < 1 || s.height < 1 || s.width > 8192 || s.height > 8192)
     throw std::invalid_argument(fmt::format("image size {}x{}: width and height must be 1 to 8192", s.width, s.height));
-  if (s.integrator == RenderIntegrator::Mirror && s.samples != 1)
-    throw std::invalid_argument(
-        fmt::format("samples {}: the mirror integrator traces one ray a pixel (the path integrator takes more)", s.samples));
+  if ((s.integrator == RenderIntegrator::Mirror || s.integrator == RenderIntegrator::Glass) && s.samples != 1)
+    throw std::invalid_argument(fmt::format("samples {}: the {} integrator traces one camera ray a pixel (the path "
+                                            "integrator takes more)",
+                                            s.samples, render_integrator_name(s.integrator)));
   if (s.samples < 1 || s.samples > kMaxRenderSamples)
     throw std::invalid_argument(fmt::format("samples {}: must be 1 to {}", s.samples, kMaxRenderSamples));
   if (s.integrator == RenderIntegrator::Ao && !(s.ao_radius > 0.0f && std::isfinite(s.ao_radius)))

@@ -22,6 +22,13 @@
 //   cosine-distributed directions about the shading normal, each `ao_radius`
 //   times the scene's bounding-box diagonal long (d of that length, tmax 1).
 //   Colour: albedo * the fraction of them unoccluded; background on a miss.
+// - glass: every surface a smooth dielectric of index kGlassIor in air, one
+//   camera ray a pixel through its centre and one child at each hit: the
+//   refraction (kind refract; entering where the ray meets the front side,
+//   dot(d, Ng) < 0), or the mirror reflection (kind reflect) on total internal
+//   reflection, up to `max_bounces` of them. Colour: the background the path
+//   escapes to times the product of its Fresnel transmittances (Schlick);
+//   black when it is still inside after max_bounces.
 // Child rays start at the barycentric hit point (u, v of the method's hit) and
 // carry parent_t, parent_uv and parent_ns, exactly as a trace's child rays do.
 // With children_from_exact, the exact answer decides instead (the reference
@@ -43,8 +50,11 @@
 
 namespace vbsim {
 
-enum class RenderIntegrator { Mirror, Path, Ao };
-const char* render_integrator_name(RenderIntegrator i);  ///< "mirror", "path", "ao"
+enum class RenderIntegrator { Mirror, Path, Ao, Glass };
+const char* render_integrator_name(RenderIntegrator i);  ///< "mirror", "path", "ao", "glass"
+
+/// The glass integrator's index of refraction (air outside: 1).
+constexpr float kGlassIor = 1.5f;
 bool parse_render_integrator(const std::string& s, RenderIntegrator& out);
 
 /// Largest samples per pixel and bounces a path takes.
@@ -60,7 +70,7 @@ struct RenderSettings {
   int samples = 1;      ///< paths a pixel (path: 1..kMaxRenderSamples; mirror: 1); ao: occlusion rays a hit
   /// ao: an occlusion ray's length, times the scene's bounding-box diagonal (> 0, finite).
   float ao_radius = 0.1f;
-  int max_bounces = 2;  ///< diffuse bounces a path takes at most (path: 0..kMaxRenderBounces)
+  int max_bounces = 2;  ///< path: diffuse bounces a path takes at most; glass: refractions and reflections (0..kMaxRenderBounces)
   uint64_t seed = 1;    ///< of the path tracer's random numbers
   /// Children (and shadow visibility) from the exact oracle's answers instead
   /// of the method's: the reference renderer, whose rays do not depend on the

@@ -88,15 +88,17 @@ void check_render_options(const RenderArgs& a, RenderSettings& rs) {
     throw UsageError("options '--preset' and '--tech' need '--mode cycle'");
   check_preset_name(a.preset);
   if (!parse_render_integrator(a.integrator, rs.integrator))
-    throw UsageError(fmt::format("option '--integrator': '{}' is not available; integrators: mirror, path, ao",
+    throw UsageError(fmt::format("option '--integrator': '{}' is not available; integrators: mirror, path, ao, glass",
                                  a.integrator));
   if (rs.integrator != RenderIntegrator::Ao && a.ao_radius_given)
     throw UsageError("option '--ao-radius' needs '--integrator ao'");
   if (rs.integrator == RenderIntegrator::Ao && !(a.ao_radius > 0.0f && std::isfinite(a.ao_radius)))
     throw UsageError(fmt::format("option '--ao-radius': {} is not a positive finite fraction of the scene's "
                                  "bounding-box diagonal", a.ao_radius));
-  if (rs.integrator == RenderIntegrator::Mirror && a.samples != 1)
-    throw UsageError("option '--spp': the mirror integrator traces one ray a pixel (use '--integrator path')");
+  if ((rs.integrator == RenderIntegrator::Mirror || rs.integrator == RenderIntegrator::Glass) && a.samples != 1)
+    throw UsageError(fmt::format("option '--spp': the {} integrator traces one camera ray a pixel (use "
+                                 "'--integrator path' or 'ao')",
+                                 a.integrator));
   if (a.samples < 1 || a.samples > kMaxRenderSamples)
     throw UsageError(fmt::format("option '--spp': {} is not 1 to {}", a.samples, kMaxRenderSamples));
   if (a.bounces < 0 || a.bounces > kMaxRenderBounces)
@@ -229,6 +231,7 @@ int run_render(const RenderArgs& a) {
       config["bounces"] = rs.max_bounces;
       config["seed"] = rs.seed;
     }
+    if (rs.integrator == RenderIntegrator::Glass) config["bounces"] = rs.max_bounces;
     if (rs.integrator == RenderIntegrator::Ao) {
       config["samples"] = rs.samples;  // occlusion rays a hit
       config["ao_radius"] = rs.ao_radius;
@@ -283,7 +286,8 @@ void add_render_command(CLI::App& app) {
   add_tech_option(*cmd, args->tech);
   cmd->add_option("--integrator", args->integrator,
                   "mirror (a shadow ray and one mirror bounce a pixel), path (diffuse path tracing) or ao "
-                  "(ambient occlusion: --spp occlusion rays at each camera hit)")
+                  "(ambient occlusion: --spp occlusion rays at each camera hit) or glass (every surface a "
+                  "dielectric: refraction and total internal reflection, up to --bounces)")
       ->capture_default_str();
   cmd->add_option("--spp", args->samples, "path: samples (paths) a pixel; ao: occlusion rays a hit; 1 to 4096")
       ->capture_default_str();
@@ -294,7 +298,8 @@ void add_render_command(CLI::App& app) {
            args->ao_radius_given = true;
          },
          "ao: an occlusion ray's length, times the scene's bounding-box diagonal [0.1]");
-  cmd->add_option("--bounces", args->bounces, "path: diffuse bounces a path takes at most, 0 to 16")
+  cmd->add_option("--bounces", args->bounces,
+                  "path: diffuse bounces a path takes at most; glass: refractions and reflections; 0 to 16")
       ->capture_default_str();
   cmd->add_option("--seed", args->seed, "path, ao: seed of the random numbers")->capture_default_str();
   cmd->add_option("--children-from", args->children_from,

@@ -176,9 +176,11 @@ const BunnyScene& bunny() {
 TEST_CASE("the closed-loop render on the accelerator draws the untimed render's image", "[module][closed-loop][render]") {
   const SceneAndBvh& sb = bunny().sb;
   const std::string method = GENERATE("none", "validity-bit", "offset-normal");
-  const RenderIntegrator integrator = GENERATE(RenderIntegrator::Mirror, RenderIntegrator::Path, RenderIntegrator::Ao);
+  const RenderIntegrator integrator = GENERATE(RenderIntegrator::Mirror, RenderIntegrator::Path, RenderIntegrator::Ao,
+                                               RenderIntegrator::Glass);
   INFO(method << " " << render_integrator_name(integrator));
-  const RenderSettings rs = small_render(integrator, integrator == RenderIntegrator::Mirror ? 1 : 3);
+  const bool one_ray = integrator == RenderIntegrator::Mirror || integrator == RenderIntegrator::Glass;
+  const RenderSettings rs = small_render(integrator, one_ray ? 1 : 3);
   const ReplayOptions opt = method_options(method);
   const RenderResult functional = render_scene(sb.scene, sb.bvh, opt, rs);
   const CycleRenderResult cycle = render_scene_cycle(sb.scene, sb.bvh, opt, rs, load_preset("small", "test"), {});

@@ -5,6 +5,8 @@
 #include <catch2/catch.hpp>
 
 #include <cstdlib>
+#include <unordered_map>
+#include <utility>
 
 #include "datapath/hit_point.h"
 #include "datapath/testers.h"
@@ -231,4 +233,95 @@ TEST_CASE("ambient occlusion: occlusion rays of the stated length about the norm
   }
   rs.ao_radius = 0.0f;
   CHECK_THROWS_WITH(render_scene(f.scene, f.bvh, opt, rs), Catch::Contains("ao radius"));
+}
+
+namespace {
+
+/// A cube [-1, 1]^3 of 12 triangles wound outward (Ng points out of it).
+Scene outward_cube() {
+  std::vector<Triangle> tris;
+  for (int axis = 0; axis < 3; ++axis)
+    for (const float side : {-1.0f, 1.0f}) {
+      const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+      auto corner = [&](float a, float b) {
+        Vec3f p{0, 0, 0};
+        p[axis] = side;
+        p[u] = a;
+        p[v] = b;
+        return p;
+      };
+      const Vec3f c00 = corner(-1, -1), c10 = corner(1, -1), c11 = corner(1, 1), c01 = corner(-1, 1);
+      if (side > 0) tris.insert(tris.end(), {{c00, c10, c11}, {c00, c11, c01}});
+      else tris.insert(tris.end(), {{c00, c11, c10}, {c00, c01, c11}});
+    }
+  return make_scene(tris);
+}
+
+/// Checks every child ray the glass render of `scene` cast against Snell's
+/// law and the critical angle; returns (refractions, reflections).
+std::pair<int, int> check_glass_rays(const Scene& scene, const Bvh& bvh, RenderResult& r) {
+  ReplayOptions opt;
+  std::string error;
+  REQUIRE(parse_method("validity-bit", opt.method, error));
+  RenderSettings rs;
+  rs.width = rs.height = 24;
+  rs.integrator = RenderIntegrator::Glass;
+  rs.max_bounces = 5;
+  rs.children_from_exact = true;
+  std::vector<TraceRay> cast;
+  r = render_scene(scene, bvh, opt, rs, [&](const TraceRay& t) { cast.push_back(t); });
+  std::unordered_map<int64_t, size_t> at;
+  for (size_t i = 0; i < cast.size(); ++i) at[cast[i].id] = i;
+  int refracted = 0, reflected = 0;
+  for (const TraceRay& t : cast) {
+    if (t.kind == RayKind::Primary) continue;
+    REQUIRE((t.kind == RayKind::Refract || t.kind == RayKind::Reflect));
+    const TraceRay& parent = cast.at(at.at(t.parent));
+    const Vec3f n = normalize(geometric_normal(scene.triangles[static_cast<size_t>(t.parent_prim)]));
+    const Vec3f di = normalize(parent.d), dt = normalize(t.d);
+    const bool entering = dot(di, n) < 0.0f;
+    const float eta = entering ? 1.0f / kGlassIor : kGlassIor;
+    const float sin_i = length(cross(di, n)), sin_t = length(cross(dt, n));
+    CHECK(std::abs(length(t.d) - 1.0f) < 1e-5f);
+    if (t.kind == RayKind::Refract) {
+      ++refracted;
+      CHECK(std::abs(sin_t - eta * sin_i) < 1e-4f);        // Snell
+      CHECK((dot(dt, n) < 0.0f) == (dot(di, n) < 0.0f));  // through the surface
+    } else {
+      ++reflected;
+      CHECK(!entering);                                     // from inside only
+      CHECK(eta * sin_i >= 1.0f - 1e-5f);                   // past the critical angle
+      CHECK(std::abs(sin_t - sin_i) < 1e-4f);               // the mirror direction
+      CHECK((dot(dt, n) < 0.0f) != (dot(di, n) < 0.0f));    // back to the side it came from
+    }
+  }
+  return {refracted, reflected};
+}
+
+}  // namespace
+
+TEST_CASE("glass: Snell's law at every refraction and reflection only past the critical angle", "[render][glass]") {
+  const Fixture f;
+  RenderResult r;
+  // The ground and the occluder are single sheets: every ray enters them from above and leaves below.
+  CHECK(check_glass_rays(f.scene, f.bvh, r).first > 0);
+  // Every pixel that sees them: the background times the transmittances, never brighter.
+  const Rgb8 sky = to_rgb8(background_linear());
+  int glass_pixels = 0;
+  for (int p = 0; p < 24 * 24; ++p) {
+    if (r.primary_prim[p] < 0) continue;
+    ++glass_pixels;
+    for (int c = 0; c < 3; ++c) CHECK(r.image[3 * p + c] <= sky[c]);
+  }
+  CHECK(glass_pixels > 0);
+  // A closed cube: rays that entered meet its far faces from inside, some past the critical angle.
+  const Scene cube = outward_cube();
+  const Bvh cube_bvh = build_bvh(cube);
+  const auto [refracted, reflected] = check_glass_rays(cube, cube_bvh, r);
+  CHECK(refracted > 0);
+  CHECK(reflected > 0);
+  RenderSettings rs;
+  rs.integrator = RenderIntegrator::Glass;
+  rs.samples = 2;
+  CHECK_THROWS_WITH(render_scene(f.scene, f.bvh, ReplayOptions{}, rs), Catch::Contains("one camera ray a pixel"));
 }
