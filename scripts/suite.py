@@ -29,8 +29,8 @@ import suite_report as report  # noqa: E402
 import suite_scenes as scenes  # noqa: E402
 from point_jobs import file_digest  # noqa: E402
 
-SMALL = {"tier": "small", "size": "32x32", "spp": 1, "glass_paths": 200, "max_rays": 1000, "bench_repeats": 1}
-DEFAULT = {"tier": "medium", "size": "128x128", "spp": 1, "glass_paths": 4000, "max_rays": 0, "bench_repeats": 2}
+SMALL = {"tier": "small", "size": "32x32", "spp": 1, "glass_bounces": 3, "max_rays": 1000, "bench_repeats": 1}
+DEFAULT = {"tier": "medium", "size": "128x128", "spp": 1, "glass_bounces": 3, "max_rays": 0, "bench_repeats": 2}
 
 
 def parse_args(argv):
@@ -42,7 +42,8 @@ def parse_args(argv):
     ap.add_argument("--types", default=",".join(rays.TYPES), help="comma list of ray types [all]")
     ap.add_argument("--size", help="frame WxH of the renders [128x128; 32x32 with --small]")
     ap.add_argument("--spp", type=int, help="paths a pixel of the path tracer [1]")
-    ap.add_argument("--glass-paths", type=int, help="camera paths of vbsim gen paths for the glass rays [4000; 200]")
+    ap.add_argument("--glass-bounces", type=int,
+                    help="refractions and reflections a path of the glass render takes at most [3]")
     ap.add_argument("--max-rays", type=int, help="at most this many rays a type, taken evenly (0: all) [0; 1000]")
     ap.add_argument("--ao-radius", type=float, default=0.1, help="ambient-occlusion ray length, times the scene's bounding-box diagonal [0.1]")
     ap.add_argument("--methods", default="", help="vbsim score --methods [score's default: every method]")
@@ -81,7 +82,7 @@ def log(msg):
 
 def run_key(a, meta):
     """What a scene's runs depend on: the scene, the ray options, the vbsim binary."""
-    parts = {"scene": meta["key"], "size": a.size, "spp": a.spp, "glass": a.glass_paths, "max": a.max_rays,
+    parts = {"scene": meta["key"], "size": a.size, "spp": a.spp, "glass": a.glass_bounces, "max": a.max_rays,
              "ao": a.ao_radius, "vbsim": file_digest(a.vbsim)}
     return hashlib.sha256(json.dumps(parts, sort_keys=True).encode()).hexdigest()[:16]
 
@@ -183,7 +184,7 @@ def main(argv=None):
         results.append(r)
     res_dir = os.path.join(a.out, "results")
     os.makedirs(res_dir, exist_ok=True)
-    settings = {"size": a.size, "spp": a.spp, "glass_paths": a.glass_paths, "max_rays": a.max_rays,
+    settings = {"size": a.size, "spp": a.spp, "glass_bounces": a.glass_bounces, "max_rays": a.max_rays,
                 "ao_radius": a.ao_radius, "testers": a.testers, "methods": a.methods or "score's default",
                 "presets": a.presets, "bench_method": a.bench_method, "bench_repeats": a.bench_repeats,
                 "types": a.types, "tier": None if names else a.tier, "scenes": [m["name"] for m in prepared],

@@ -10,8 +10,9 @@ exact answers, so the rays do not depend on a method):
 - `vbsim render --integrator ao`: ambient-occlusion rays, `--spp` occlusion
   queries (kind shadow) at each camera hit, cosine-distributed about the
   shading normal, `ao_radius` times the scene's bounding-box diagonal long;
-- `vbsim gen paths --set depth=3`: glass (refract) rays of its camera paths
-  (ior 1.5; gen paths' camera paths, not the renderer's glass integrator);
+- `vbsim render --integrator glass`: every surface a dielectric of index 1.5,
+  one camera ray a pixel and at each hit its refraction (or, past the critical
+  angle, its reflection), up to `glass_bounces` of them: the glass rays;
 - `vbsim capture --strip-offsets -- pathtracer`: Embree's own path tracer
   (embree-tools) on the scene, one thread: the `pathtracer` type is its whole
   trace, camera rays, shadow rays and bounces with their parents (another
@@ -50,9 +51,8 @@ def source_commands(vbsim, scene_ply, light, opts, out_dir, camera):
                         "--trace-out", os.path.join(out_dir, "ao.jsonl")],
         "path": render + ["--integrator", "path", "--bounces", "3", "--spp", str(opts.spp), "--seed", "1",
                           "-o", os.path.join(out_dir, "path.png"), "--trace-out", os.path.join(out_dir, "path.jsonl")],
-        "glass": [vbsim, "gen", "paths", "--rays", str(opts.glass_paths), "--seed", "1",
-                  "--set", "scene=" + os.path.abspath(scene_ply), "--set", "depth=3", "-o",
-                  os.path.join(out_dir, "glass"), "-q"],
+        "glass": render + ["--integrator", "glass", "--bounces", str(opts.glass_bounces),
+                           "-o", os.path.join(out_dir, "glass.png"), "--trace-out", os.path.join(out_dir, "glass.jsonl")],
         "pathtracer": _pathtracer_capture(vbsim, scene_ply, light, opts, out_dir, camera),
     }
 
@@ -71,10 +71,6 @@ def _pathtracer_capture(vbsim, scene_ply, light, opts, out_dir, camera):
 def source_trace(source, out_dir):
     if source == "pathtracer":
         return os.path.join(out_dir, "pathtracer", "trace.jsonl")
-    if source == "glass":
-        d = os.path.join(out_dir, "glass")
-        names = sorted(n for n in os.listdir(d) if n.endswith(".jsonl"))
-        return os.path.join(d, names[0])
     return os.path.join(out_dir, source + ".jsonl")
 
 
@@ -86,7 +82,7 @@ def _type_of(ray, source, depth):
         return f"diffuse-{depth}" if kind == "diffuse" else None
     if source == "ao":
         return "ao" if kind == "shadow" else None
-    return "glass" if kind == "refract" else None
+    return "glass" if kind in ("refract", "reflect") else None
 
 
 def split(source, trace, wanted, out_dir, limit):

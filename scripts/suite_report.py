@@ -166,7 +166,7 @@ def _page(path, settings, doc, speeds, presets, prov, chart):
          "## This run", "",
          f"- command: `{' '.join(['scripts/suite.py'] + prov['command'][2:])}`",
          f"- frame {s['size']} for the renders (every pixel sampled: one primary ray a pixel in the mirror render, "
-         f"{s['spp']} path(s) a pixel in the path tracer), {s['glass_paths']} camera paths for the glass rays, "
+         f"{s['spp']} path(s) a pixel in the path tracer), up to {s['glass_bounces']} refractions and reflections a path in the glass render, "
          f"{kept}; "
          f"ambient-occlusion rays {s['ao_radius']} of the bounding-box diagonal long",
          f"- methods: {s['methods']}; testers: {s['testers']}; cycle-level presets: {', '.join(presets)}; "
