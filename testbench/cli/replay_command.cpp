@@ -2,6 +2,7 @@
 // model's replay of it (--mode cycle).
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <atomic>
 #include <csignal>
 #include <filesystem>
@@ -81,6 +82,7 @@ struct ReplayArgs {
   hw::SamplingConfig sampling;
   std::string sample_error;        // --sample-error: "1%" or 0.01 (empty: no stopping rule)
   bool sample_options_given = false;
+  bool sample_unit_given = false, sample_warmup_given = false;  // else they follow the source's window
   bool sample_no_warm = false;
 };
 
@@ -154,6 +156,12 @@ ReplayStats run_cycle_mode(const ReplayArgs& a, const ReplayOptions& opt, const 
     const hw::RayFeed feed = [&source](TraceRay& tr) { return source.next(tr); };
     if (a.sample) {
       hw::SamplingConfig sampling = a.sampling;
+      // Units and warm-ups shorter than the rays the source keeps in flight are
+      // measured in a machine still filling or draining: biased on a
+      // memory-bound run (docs/sampling.md). By default they follow the window.
+      const uint64_t window = cfg.source.window;
+      if (!a.sample_unit_given) sampling.unit = std::max<uint64_t>(sampling.unit, window);
+      if (!a.sample_warmup_given) sampling.warmup = std::max<uint64_t>(sampling.warmup, 2 * window);
       if (!a.sample_error.empty()) sampling.error = parse_sample_error(a.sample_error);
       sampling.warm = !a.sample_no_warm;
       // The tail stratum needs the trace's length beforehand: read from a file, unknown from a pipe.
@@ -374,14 +382,14 @@ void add_replay_command(CLI::App& app) {
       "fast-forward the rest functionally while warming the caches; hits and verdicts stay exact, cycles, rays/cycle "
       "and hit rates are estimates with confidence intervals (hw.sampling)");
   std::vector<CLI::Option*> sample_options = {
-      cmd->add_option("--sample-unit", args->sampling.unit, "with --sample: rays per measurement unit")
-          ->capture_default_str(),
+      cmd->add_option("--sample-unit", args->sampling.unit,
+                      "with --sample: rays per measurement unit [1000, or the source's window if larger]"),
       cmd->add_option("--sample-interval", args->sampling.interval,
                       "with --sample: one unit measured every K units (1: every unit)")
           ->capture_default_str(),
       cmd->add_option("--sample-warmup", args->sampling.warmup,
-                      "with --sample: rays simulated in detail, unmeasured, before each measured unit")
-          ->capture_default_str(),
+                      "with --sample: rays simulated in detail, unmeasured, before each measured unit [1000, or "
+                      "twice the source's window if larger]"),
       cmd->add_option("--sample-head", args->sampling.head,
                       "with --sample: the trace's first rays, simulated in detail and measured whole")
           ->capture_default_str(),
@@ -412,6 +420,8 @@ void add_replay_command(CLI::App& app) {
     (void)sample;
     args->sample_options_given = false;
     for (const CLI::Option* o : sample_options) args->sample_options_given |= o->count() > 0;
+    args->sample_unit_given = sample_options[0]->count() > 0;
+    args->sample_warmup_given = sample_options[2]->count() > 0;
     args->threads_given = threads->count() > 0;
     args->timeline_window_given = start->count() > 0 || cycles->count() > 0;
     args->vcd_window_given = vcd_start->count() > 0 || vcd_cycles->count() > 0;
