@@ -54,13 +54,12 @@ IncompleteRayJudge::IncompleteRayJudge(const CapturedScene& scene, bool unwatche
   }
   if (ray_masks) {
     unheld_masks_ = scene.unheld_masks();
-    if (std::any_of(scene.triangle_masks().begin(), scene.triangle_masks().end(),
-                    [](uint32_t m) { return m != kAllMaskBits; }))
-      triangle_masks_ = scene.triangle_masks();
+    triangle_masks_used_ = std::any_of(scene.triangle_masks().begin(), scene.triangle_masks().end(),
+                                       [](uint32_t m) { return m != kAllMaskBits; });
   }
   if ((uncaptured_kinds_ != 0 || scene.has_instances()) && !scene.triangles().empty()) {
     Scene flattened = make_scene(scene.triangles());
-    flattened.triangle_masks = triangle_masks_;
+    flattened.triangle_masks = triangle_masks();
     captured_only_ = std::make_unique<EmbreeReference>(flattened, "", true);
   }
 }

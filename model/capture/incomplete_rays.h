@@ -73,7 +73,10 @@ class IncompleteRayJudge {
   /// The mask `r` carries in the trace: its own when Embree honours masks, else all bits.
   uint32_t ray_mask(const RawRay& r) const { return ray_masks_ ? r.mask : kAllMaskBits; }
   /// The triangles' masks the trace declares (empty: all bits, or masks not honoured).
-  const std::vector<uint32_t>& triangle_masks() const { return triangle_masks_; }
+  const std::vector<uint32_t>& triangle_masks() const {
+    static const std::vector<uint32_t> all_bits;
+    return triangle_masks_used_ ? scene_.triangle_masks() : all_bits;
+  }
 
   /// Reasons of every geometry of the scene outside the trace.
   uint32_t uncaptured_kinds() const { return uncaptured_kinds_; }
@@ -89,7 +92,7 @@ class IncompleteRayJudge {
   uint32_t uncaptured_kinds_ = 0;
   std::vector<uint32_t> reason_by_geom_;           ///< geomID -> reason bit
   bool ray_masks_;                                  ///< Embree honours ray masks
-  std::vector<uint32_t> triangle_masks_;            ///< per triangle, when any is not all bits
+  bool triangle_masks_used_ = false;                ///< masks honoured and some triangle's not all bits
   std::vector<std::pair<uint32_t, uint32_t>> unheld_masks_;  ///< CapturedScene::unheld_masks()
   std::unique_ptr<EmbreeReference> captured_only_;  ///< the captured triangles, when anything is outside
   std::unique_ptr<SurfaceProximity> surfaces_;      ///< the captured triangles, for parentless origins

@@ -52,7 +52,8 @@ RenderShader::RenderShader(const Scene& scene, const Bvh& bvh, const RenderSetti
       filler_(scene, bvh, parent_window),
       pixels_(static_cast<uint32_t>(settings.width) * static_cast<uint32_t>(settings.height)),
       slots_(static_cast<uint32_t>(settings.max_bounces) + 2),
-      ao_length_(settings.ao_radius * static_cast<float>(length(scene.bounds.hi - scene.bounds.lo))) {
+      ao_length_(settings.ao_radius * length(scene.bounds.hi - scene.bounds.lo)),
+      camera_rays_(settings.integrator == RenderIntegrator::Ao ? 1u : static_cast<uint32_t>(settings.samples)) {
   RenderResult& r = result_;
   r.width = settings.width;
   r.height = settings.height;
@@ -73,15 +74,14 @@ void RenderShader::make_primary() {
   TraceRay r;
   r.kind = RayKind::Primary;
   r.o = camera_.eye();
-  if (settings_.samples == 1 || settings_.integrator == RenderIntegrator::Ao) {
+  if (camera_rays_ == 1) {
     r.d = camera_.direction(x, y);  // the pixel's centre
   } else {
     const RenderRandom rng(settings_.seed, pixel, sample);
     r.d = camera_.direction_at(float(x) + rng.uniform(0, 0), float(y) + rng.uniform(0, 1));
   }
   push_child(r, RayContext{pixel, sample, 0, Role::Primary, Vec3f{1, 1, 1}});
-  // ao: one camera ray a pixel; `samples` counts the occlusion rays of its hit.
-  if (settings_.integrator == RenderIntegrator::Ao || ++next_sample_ == static_cast<uint32_t>(settings_.samples)) {
+  if (++next_sample_ == camera_rays_) {
     next_sample_ = 0;
     ++next_pixel_;
   }
@@ -147,8 +147,7 @@ void RenderShader::on_result(const TraceRay& ray, const RayOutcome& outcome, uin
       }
       break;
   }
-  if (--p.pending == 0 &&
-      p.primaries == (settings_.integrator == RenderIntegrator::Ao ? 1u : static_cast<uint32_t>(settings_.samples))) {
+  if (--p.pending == 0 && p.primaries == camera_rays_) {
     finish_pixel(c.pixel, p);
     pixels_live_.erase(c.pixel);
   }

@@ -86,6 +86,7 @@ class RenderShader final : public RayShader {
   uint32_t pixels_;
   uint32_t slots_;  ///< path: terms a sample keeps (max_bounces + 2)
   float ao_length_;  ///< ao: an occlusion ray's length (ao_radius times the bounding-box diagonal)
+  uint32_t camera_rays_;  ///< camera rays a pixel: samples (path), else 1 (ao's samples are occlusion rays)
   uint32_t next_pixel_ = 0, next_sample_ = 0;
   int64_t next_id_ = 0;
   std::deque<Pending> children_;

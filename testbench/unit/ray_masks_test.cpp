@@ -23,11 +23,6 @@ namespace {
 const std::string kMaskedHeader =
     "{\"format\":\"vbsim-trace\",\"version\":1,\"scene\":\"s.ply\",\"triangle_masks\":[[2,2,2],[7,1,0]]}\n";
 
-TraceError error_reading(const std::string& path) {
-  auto source = open_trace(path);
-  return trace_error_of([&] { read_all(*source); });
-}
-
 /// Two squares, the ground at z = 0 (triangles 0, 1) and a lid at z = 1 (2, 3).
 Scene two_squares() {
   auto square = [](float z) {

@@ -49,6 +49,23 @@ bool rehits_near(const Scene& scene, const Ray& ray, float near) {
   return false;
 }
 
+/// The reference renderer's settings (children from the exact answers: the
+/// picture is the scene's, not a method's) for `integrator` at 24 x 24.
+RenderSettings exact_render(RenderIntegrator integrator) {
+  RenderSettings rs;
+  rs.width = rs.height = 24;
+  rs.integrator = integrator;
+  rs.children_from_exact = true;
+  return rs;
+}
+
+ReplayOptions validity_bit() {
+  ReplayOptions opt;
+  std::string error;
+  REQUIRE(parse_method("validity-bit", opt.method, error));
+  return opt;
+}
+
 }  // namespace
 
 TEST_CASE("method none shows acne on surface pixels only in the acne colour and no leaks", "[render]") {
@@ -183,14 +200,9 @@ TEST_CASE("render refuses a zero image size", "[render]") {
 TEST_CASE("ambient occlusion: occlusion rays of the stated length about the normal, dark only under the occluder",
           "[render][ao]") {
   const Fixture f;
-  ReplayOptions opt;
-  std::string error;
-  REQUIRE(parse_method("validity-bit", opt.method, error));
-  RenderSettings rs;
-  rs.width = rs.height = 24;
-  rs.integrator = RenderIntegrator::Ao;
+  const ReplayOptions opt = validity_bit();
+  RenderSettings rs = exact_render(RenderIntegrator::Ao);
   rs.samples = 16;
-  rs.children_from_exact = true;  // the exact answers decide: the picture is the scene's, not a method's
   const float diagonal = length(f.scene.bounds.hi - f.scene.bounds.lo);
   // The ground's up normal (+y side, where the camera is): Ng of triangle 0.
   const Vec3f up = normalize(geometric_normal(f.scene.triangles[0]));
@@ -260,16 +272,10 @@ Scene outward_cube() {
 /// Checks every child ray the glass render of `scene` cast against Snell's
 /// law and the critical angle; returns (refractions, reflections).
 std::pair<int, int> check_glass_rays(const Scene& scene, const Bvh& bvh, RenderResult& r) {
-  ReplayOptions opt;
-  std::string error;
-  REQUIRE(parse_method("validity-bit", opt.method, error));
-  RenderSettings rs;
-  rs.width = rs.height = 24;
-  rs.integrator = RenderIntegrator::Glass;
+  RenderSettings rs = exact_render(RenderIntegrator::Glass);
   rs.max_bounces = 5;
-  rs.children_from_exact = true;
   std::vector<TraceRay> cast;
-  r = render_scene(scene, bvh, opt, rs, [&](const TraceRay& t) { cast.push_back(t); });
+  r = render_scene(scene, bvh, validity_bit(), rs, [&](const TraceRay& t) { cast.push_back(t); });
   std::unordered_map<int64_t, size_t> at;
   for (size_t i = 0; i < cast.size(); ++i) at[cast[i].id] = i;
   int refracted = 0, reflected = 0;

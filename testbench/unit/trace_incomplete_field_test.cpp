@@ -14,12 +14,6 @@ namespace {
 
 const std::string kHeader = "{\"format\":\"vbsim-trace\",\"version\":1,\"scene\":\"s.ply\"}\n";
 
-/// The error reading every ray of the trace at `path` throws.
-TraceError error_reading(const std::string& path) {
-  auto source = open_trace(path);
-  return trace_error_of([&] { read_all(*source); });
-}
-
 }  // namespace
 
 TEST_CASE("incomplete: names in the text form, bits in the binary form, both ways", "[trace][incomplete]") {

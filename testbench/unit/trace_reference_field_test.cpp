@@ -16,12 +16,6 @@ namespace {
 const std::string kHeader =
     "{\"format\":\"vbsim-trace\",\"version\":1,\"scene\":\"s.ply\",\"reference\":\"Embree in the renderer\"}\n";
 
-/// The error reading every ray of the trace at `path` throws.
-TraceError error_reading(const std::string& path) {
-  auto source = open_trace(path);
-  return trace_error_of([&] { read_all(*source); });
-}
-
 uint32_t layout_of(const std::string& vbt) {
   const std::string bytes = read_file(vbt);
   uint32_t v = 0;

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "trace/trace_error.h"
+#include "trace/trace_file.h"
 #include "trace/trace_record.h"
 #include "trace/trace_source.h"
 
@@ -90,6 +91,12 @@ TraceError trace_error_of(F&& f) {
   }
   FAIL("expected a TraceError");
   throw std::logic_error("unreachable");
+}
+
+/// The error reading every ray of the trace at `path` throws.
+inline TraceError error_reading(const std::string& path) {
+  auto source = open_trace(path);
+  return trace_error_of([&] { read_all(*source); });
 }
 
 }  // namespace vbsim::test
